@@ -1,0 +1,114 @@
+//! Typed errors. Every one is raised before the first row leaves the renderer, so a failed
+//! frame never leaves a half-drawn picture behind.
+
+/// A table whose capacity a scene can exceed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
+pub enum Table {
+    /// The polygon table (polygons that survive culling and touch the screen).
+    Polygons,
+    /// The edge table (edges that cross a sample row on screen).
+    Edges,
+    /// The active list (polygons spanning one row; twice as many active edges).
+    ActivePolygons,
+    /// The row buffers (`depth[x]`, `intensity[x]`): the frame is wider than they are.
+    RowWidth,
+}
+
+/// What went wrong, and what to do about it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
+pub enum Error {
+    /// The scene needs more room in `table` than the renderer has: build it with a capacity of
+    /// at least `needed` (see [`crate::requirements`]).
+    Capacity {
+        /// Which table.
+        table: Table,
+        /// What this scene needs.
+        needed: u32,
+        /// What the renderer has.
+        capacity: u32,
+    },
+    /// Face `face` refers to vertex `index`, which the mesh does not have: fix the face list.
+    IndexOutOfRange {
+        /// Face number in the scene (objects in order, faces in order).
+        face: u32,
+        /// The offending index.
+        index: u32,
+    },
+    /// Face `face` has fewer than 3 vertices: drop it or complete it.
+    TooFewVertices {
+        /// Face number.
+        face: u32,
+    },
+    /// Face `face` has more than [`crate::raster::MAX_FACE_VERTICES`] vertices: split it.
+    TooManyVertices {
+        /// Face number.
+        face: u32,
+    },
+    /// A vertex of face `face` is NaN, infinite or outside the number format's range (or a
+    /// transform pushed it there): fix the data or scale the model down.
+    NonFinite {
+        /// Face number.
+        face: u32,
+    },
+    /// Face `face` is not convex (its outline goes down and up more than once): split it into
+    /// triangles.
+    NotConvex {
+        /// Face number.
+        face: u32,
+    },
+    /// The configuration is impossible: size 0 or above `MAX_VIEWPORT`, or sub-pixel bits
+    /// outside 1..=8.
+    BadConfig,
+}
+
+impl core::fmt::Display for Error {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match *self {
+            Error::Capacity {
+                table,
+                needed,
+                capacity,
+            } => write!(
+                f,
+                "{table:?} capacity {capacity} is too small: this scene needs {needed}"
+            ),
+            Error::IndexOutOfRange { face, index } => {
+                write!(f, "face {face}: vertex index {index} out of range")
+            }
+            Error::TooFewVertices { face } => write!(f, "face {face}: fewer than 3 vertices"),
+            Error::TooManyVertices { face } => write!(
+                f,
+                "face {face}: more than {} vertices",
+                crate::raster::MAX_FACE_VERTICES
+            ),
+            Error::NonFinite { face } => write!(
+                f,
+                "face {face}: coordinate not finite or outside the number format"
+            ),
+            Error::NotConvex { face } => write!(f, "face {face}: not convex"),
+            Error::BadConfig => write!(
+                f,
+                "bad configuration: size must be 1..=2048 and sub-pixel bits 1..=8"
+            ),
+        }
+    }
+}
+
+/// A render that failed: either the scene (before any row was sent) or the sink.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RenderError<E> {
+    /// The scene or configuration was rejected; no row was sent.
+    Scene(Error),
+    /// The sink failed while rows were being sent.
+    Sink(E),
+}
+
+impl<E> From<Error> for RenderError<E> {
+    fn from(e: Error) -> Self {
+        RenderError::Scene(e)
+    }
+}

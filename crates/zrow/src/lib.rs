@@ -1,0 +1,66 @@
+//! # zrow — hidden surfaces removed one scan line at a time, in fixed point
+//!
+//! zrow draws solid 3D on microcontrollers that cannot hold a frame buffer, let alone a
+//! z-buffer. For each row it keeps only `depth[x]` and `intensity[x]`, resolves visibility with
+//! an edge table, an active list and incremental depth, and hands the finished row to a
+//! [`RowSink`] (a display, a simulator, memory).
+//!
+//! ```
+//! use zrow::{Config, Face, FrameBuffer, Mesh, Q16_16, Scanline, ScreenScene, Vec3};
+//! use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+//!
+//! // Seed 002's two triangles (z = depth, smaller is nearer), moved half a pixel so that
+//! // pixel (3, 1)'s centre is the seed's point (3, 1).
+//! let q = |x: f32, y: f32, z: f32| Vec3::<Q16_16>::from_f32([x + 0.5, y + 0.5, z]).unwrap();
+//! let vertices = [
+//!     q(0.0, 0.0, 6.0), q(6.0, 0.0, 0.0), q(0.0, 6.0, 0.0), // s1
+//!     q(2.0, 0.0, 6.0), q(6.0, 0.0, 6.0), q(4.0, 4.0, 0.0), // s2
+//! ];
+//! let faces = [
+//!     Face { indices: &[0, 1, 2], color: Rgb565::RED },
+//!     Face { indices: &[3, 4, 5], color: Rgb565::GREEN },
+//! ];
+//! let scene = ScreenScene { mesh: Mesh { vertices: &vertices, faces: &faces } };
+//!
+//! // Capacities: 8-pixel rows, 2 polygons, 8 edges, 2 polygons active in a row.
+//! let mut renderer = Scanline::<Q16_16, 8, 2, 8, 2>::new();
+//! let mut pixels = [Rgb565::BLACK; 8 * 8];
+//! let mut frame = FrameBuffer::new(&mut pixels, 8);
+//! renderer.render(&scene, &Config::screen(8, 8), &mut frame).unwrap();
+//! assert_eq!(frame.pixel(3, 1), Some(Rgb565::RED)); // s1 is in front at (3, 1)
+//! ```
+//!
+//! The pipeline, in the order a frame goes through it:
+#![no_std]
+#![forbid(unsafe_code)]
+#![deny(missing_docs)]
+
+/// Back-face culling (the seeds' normal test).
+pub mod backface;
+/// Typed errors.
+pub mod error;
+/// Transform, cull, clip, project, snap.
+pub mod geometry;
+/// Vectors and affine transforms in any format.
+pub mod math;
+/// Number formats: [`Q16_16`] and `f32` behind one trait.
+pub mod number;
+/// Snapped polygons, the exact edge walk, polygon setup.
+pub mod raster;
+/// Capacities a scene needs.
+pub mod requirements;
+/// The scan-line method.
+pub mod scanline;
+/// Meshes, objects, camera, light; screen-space scenes.
+pub mod scene;
+/// Where rows go.
+pub mod sink;
+
+pub use error::{Error, RenderError, Table};
+pub use math::{Affine, Vec3};
+pub use number::{Scalar, Q16_16};
+pub use raster::{Config, Cull};
+pub use requirements::{requirements, Requirements};
+pub use scanline::{FrameStats, Scanline};
+pub use scene::{Camera, Face, Light, Mesh, ModelScene, Object, Projection, Scene, ScreenScene};
+pub use sink::{DrawTargetSink, FrameBuffer, Row, RowSink};

@@ -1,0 +1,130 @@
+//! Small vector and affine-matrix helpers in any [`Scalar`] format (saturating).
+
+use crate::number::Scalar;
+
+/// A 3-vector.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct Vec3<N> {
+    /// x
+    pub x: N,
+    /// y
+    pub y: N,
+    /// z
+    pub z: N,
+}
+
+impl<N: Scalar> Vec3<N> {
+    /// From components.
+    pub const fn new(x: N, y: N, z: N) -> Self {
+        Vec3 { x, y, z }
+    }
+    /// From `f32` components; `None` if any is not representable.
+    pub fn from_f32(v: [f32; 3]) -> Option<Self> {
+        Some(Vec3::new(
+            N::from_f32(v[0])?,
+            N::from_f32(v[1])?,
+            N::from_f32(v[2])?,
+        ))
+    }
+    /// Difference.
+    pub fn sub(self, o: Self) -> Self {
+        Vec3::new(self.x.sub(o.x), self.y.sub(o.y), self.z.sub(o.z))
+    }
+    /// Dot product.
+    pub fn dot(self, o: Self) -> N {
+        self.x.mul(o.x).add(self.y.mul(o.y)).add(self.z.mul(o.z))
+    }
+    /// Cross product.
+    pub fn cross(self, o: Self) -> Self {
+        Vec3::new(
+            self.y.mul(o.z).sub(self.z.mul(o.y)),
+            self.z.mul(o.x).sub(self.x.mul(o.z)),
+            self.x.mul(o.y).sub(self.y.mul(o.x)),
+        )
+    }
+    /// Divides by the largest component magnitude, so the result's components lie in
+    /// [−1, 1] and its squared length in [1, 3] (no overflow in later dot products).
+    /// `None` for the zero vector.
+    pub fn unit_max(self) -> Option<Self> {
+        let abs = |v: N| if v < N::ZERO { v.neg() } else { v };
+        let mut m = abs(self.x);
+        for c in [abs(self.y), abs(self.z)] {
+            if c > m {
+                m = c;
+            }
+        }
+        if m <= N::ZERO {
+            return None;
+        }
+        Some(Vec3::new(self.x.div(m)?, self.y.div(m)?, self.z.div(m)?))
+    }
+}
+
+/// An affine transform: a 3×4 matrix (rotation/scale columns and a translation column).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Affine<N> {
+    /// Rows of the matrix; `m[r][3]` is the translation.
+    pub m: [[N; 4]; 3],
+}
+
+impl<N: Scalar> Affine<N> {
+    /// The identity.
+    pub fn identity() -> Self {
+        let (o, z) = (N::ONE, N::ZERO);
+        Affine {
+            m: [[o, z, z, z], [z, o, z, z], [z, z, o, z]],
+        }
+    }
+    /// From `f32` rows; `None` if an entry is not representable.
+    pub fn from_f32(m: [[f32; 4]; 3]) -> Option<Self> {
+        let mut out = Self::identity();
+        for r in 0..3 {
+            for c in 0..4 {
+                out.m[r][c] = N::from_f32(m[r][c])?;
+            }
+        }
+        Some(out)
+    }
+    /// Rotation about the y axis then the x axis (angles in radians) and a translation,
+    /// computed in `f32` (micromath) and converted.
+    pub fn rotate_yx_translate(yaw: f32, pitch: f32, t: [f32; 3]) -> Option<Self> {
+        use micromath::F32Ext;
+        let (sy, cy) = (yaw.sin(), yaw.cos());
+        let (sp, cp) = (pitch.sin(), pitch.cos());
+        // R = Rx(pitch) · Ry(yaw)
+        Self::from_f32([
+            [cy, 0.0, sy, t[0]],
+            [sp * sy, cp, -sp * cy, t[1]],
+            [-cp * sy, sp, cp * cy, t[2]],
+        ])
+    }
+    /// Applies to a point.
+    pub fn apply(&self, p: Vec3<N>) -> Vec3<N> {
+        let row = |r: &[N; 4]| {
+            r[0].mul(p.x)
+                .add(r[1].mul(p.y))
+                .add(r[2].mul(p.z))
+                .add(r[3])
+        };
+        Vec3::new(row(&self.m[0]), row(&self.m[1]), row(&self.m[2]))
+    }
+    /// Applies the linear part only (to a direction).
+    pub fn apply_dir(&self, p: Vec3<N>) -> Vec3<N> {
+        let row = |r: &[N; 4]| r[0].mul(p.x).add(r[1].mul(p.y)).add(r[2].mul(p.z));
+        Vec3::new(row(&self.m[0]), row(&self.m[1]), row(&self.m[2]))
+    }
+    /// `self ∘ o`: applies `o` first.
+    pub fn then_after(&self, o: &Self) -> Self {
+        let mut out = Self::identity();
+        for r in 0..3 {
+            for c in 0..4 {
+                let mut acc = if c == 3 { self.m[r][3] } else { N::ZERO };
+                for k in 0..3 {
+                    acc = acc.add(self.m[r][k].mul(o.m[k][c]));
+                }
+                out.m[r][c] = acc;
+            }
+        }
+        out
+    }
+}

@@ -1,0 +1,463 @@
+//! The scan-line method (seed 000 §2.2.2), made exact and fast.
+//!
+//! The seeds' algorithm: for each scan line, set `depth[x]` to the maximum and `intensity[x]` to
+//! the background; for each polygon crossing the line and each pixel inside it, compute the
+//! polygon's depth z and keep it where `z < depth[x]`; hand the finished row on. Depth moves
+//! incrementally: `z −= A/C` one pixel right, `z += (A/m + B)/C` one row down an edge.
+//!
+//! Here, as in the seeds and Foley §15.6:
+//!
+//! - a **polygon table** holds each polygon's depth plane and colour;
+//! - an **edge table** holds every edge that crosses a sample row, sorted by its first row (a
+//!   sorted array with a cursor is the bucket list without the pointers);
+//! - an **active list** holds the polygons the current row crosses, each with its current left
+//!   and right edge stepped exactly (`x += 1/m`, see [`crate::raster::Dda`]) and its depth at
+//!   its left end, stepped down the edge by `dzdy + dzdx·Δx` — the seeds' `(A/m + B)/C` with the
+//!   pixel steps the edge actually takes, so it equals the plane at every pixel centre;
+//! - **span coherence** (seed 000, the three cases): the row is cut at every span end into
+//!   pieces where the same polygons are present. Where one polygon wins at both ends of a piece
+//!   it wins throughout (depths are linear in x, so their differences cannot change sign in
+//!   between) and the piece is filled with no depth test; only where the winners differ — the
+//!   polygons intersect (case 3) — is the piece resolved pixel by pixel.
+//!
+//! Ties go to the polygon that comes first in the scene (GUIDE §1): the winner is the least
+//! `(depth, scene order)`. In Q16.16 depths step by wrapping integer additions, which equal the
+//! direct plane evaluation bit for bit, so the span decision equals the per-pixel test exactly.
+//!
+//! Every capacity is checked while the tables are built, before the first row is sent.
+
+use crate::error::{Error, RenderError, Table};
+use crate::number::{DepthPlane, Scalar};
+use crate::raster::{setup, Config, Dda, Edge, Side};
+use crate::requirements::Requirements;
+use crate::scene::Scene;
+use crate::sink::{Row, RowSink};
+use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+use heapless::Vec;
+
+const NONE: u16 = u16::MAX;
+
+/// One entry of the polygon table.
+#[derive(Clone, Copy, Debug)]
+struct PolygonEntry<N> {
+    plane: DepthPlane<N>,
+    color: Rgb565,
+    first_row: i16,
+    last_row: i16,
+    /// Position in the active list, or `NONE`.
+    slot: u16,
+}
+
+/// One entry of the active list: a polygon crossing the current row and its two edges.
+#[derive(Clone, Copy, Debug)]
+struct Active<N> {
+    left: Dda,
+    right: Dda,
+    /// Depth at the centre of pixel `xl` of the current row.
+    z_left: N,
+    dzdx: N,
+    dzdy: N,
+    /// This row's span: `xl..xr` (unclamped; may be empty).
+    xl: i32,
+    xr: i32,
+    left_last: i16,
+    right_last: i16,
+    last_row: i16,
+    poly: u16,
+    color: Rgb565,
+    fresh: bool,
+}
+
+/// What a frame cost, for benchmarks and tests.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FrameStats {
+    /// Polygons in the polygon table.
+    pub polygons: u32,
+    /// Edges in the edge table.
+    pub edges: u32,
+    /// Most polygons active in one row.
+    pub max_active: u32,
+    /// Pieces of rows decided from their ends (no per-pixel test).
+    pub coherent_spans: u32,
+    /// Pixels resolved one by one where polygons intersect.
+    pub per_pixel: u32,
+}
+
+/// The scan-line renderer.
+///
+/// - `N`: number format ([`crate::Q16_16`] or `f32`);
+/// - `W`: row capacity (the widest frame, in pixels);
+/// - `P`: polygon-table capacity; `E`: edge-table capacity; `A`: active-list capacity
+///   (polygons in one row).
+///
+/// Choose the capacities with [`crate::requirements`]. All memory is in the struct:
+/// [`Scanline::RAM_BYTES`] is the whole of it.
+pub struct Scanline<N, const W: usize, const P: usize, const E: usize, const A: usize> {
+    polygons: Vec<PolygonEntry<N>, P>,
+    edges: Vec<Edge, E>,
+    active: Vec<Active<N>, A>,
+    open: Vec<u16, A>,
+    depth: [N; W],
+    intensity: [Rgb565; W],
+}
+
+impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize> Default
+    for Scanline<N, W, P, E, A>
+{
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
+    Scanline<N, W, P, E, A>
+{
+    /// Bytes of RAM the renderer occupies (all its tables and row buffers).
+    pub const RAM_BYTES: usize = core::mem::size_of::<Self>();
+
+    /// An empty renderer.
+    pub const fn new() -> Self {
+        const {
+            assert!(P < NONE as usize, "polygon capacity must be below 65535");
+            assert!(A < NONE as usize, "active capacity must be below 65535");
+        }
+        Scanline {
+            polygons: Vec::new(),
+            edges: Vec::new(),
+            active: Vec::new(),
+            open: Vec::new(),
+            depth: [N::MAX; W],
+            intensity: [Rgb565::BLACK; W],
+        }
+    }
+
+    /// Renders `scene` and sends its rows, top to bottom, to `sink`.
+    ///
+    /// Errors in the scene or the configuration — including any capacity the scene exceeds —
+    /// are returned before the first row is sent.
+    pub fn render<K: RowSink<N>>(
+        &mut self,
+        scene: &impl Scene<N>,
+        cfg: &Config,
+        sink: &mut K,
+    ) -> Result<FrameStats, RenderError<K::Error>> {
+        let mut stats = self.prepare(scene, cfg)?;
+        self.run_rows(cfg, sink, &mut stats)
+            .map_err(RenderError::Sink)?;
+        Ok(stats)
+    }
+
+    /// Builds the polygon and edge tables and checks the active-list capacity.
+    fn prepare(&mut self, scene: &impl Scene<N>, cfg: &Config) -> Result<FrameStats, Error> {
+        cfg.validate(W)?;
+        self.polygons.clear();
+        self.edges.clear();
+        self.active.clear();
+        let (mut polys, mut edges) = (0u32, 0u32);
+        let table = &mut self.polygons;
+        let edge_table = &mut self.edges;
+        scene.polygons(cfg, &mut |poly| {
+            let Some(sp) = setup(poly, cfg)? else {
+                return Ok(());
+            };
+            polys += 1;
+            edges += sp.edges.len() as u32;
+            let index = table.len() as u16;
+            let entry = PolygonEntry {
+                plane: sp.plane,
+                color: sp.color,
+                first_row: sp.first_row,
+                last_row: sp.last_row,
+                slot: NONE,
+            };
+            // Past a capacity, keep counting so the error can say what the scene needs.
+            if table.push(entry).is_ok() {
+                for mut e in sp.edges {
+                    e.poly = index;
+                    if edge_table.push(e).is_err() {
+                        break;
+                    }
+                }
+            }
+            Ok(())
+        })?;
+        let over = |table, needed, capacity: usize| Error::Capacity {
+            table,
+            needed,
+            capacity: capacity as u32,
+        };
+        if polys as usize > P {
+            return Err(over(Table::Polygons, polys, P));
+        }
+        if edges as usize > E {
+            return Err(over(Table::Edges, edges, E));
+        }
+        self.edges
+            .sort_unstable_by_key(|e| (e.first_row, e.poly, e.side as u8));
+        let max_active = self.max_active()?;
+        Ok(FrameStats {
+            polygons: polys,
+            edges,
+            max_active,
+            ..FrameStats::default()
+        })
+    }
+
+    /// Most polygons active in one row, checked against `A` (using the sweep's own scratch).
+    fn max_active(&mut self) -> Result<u32, Error> {
+        self.open.clear();
+        let mut max = 0;
+        for e in &self.edges {
+            let p = &mut self.polygons[e.poly as usize];
+            if p.slot != NONE {
+                continue;
+            }
+            p.slot = 0; // seen
+            let (row, last) = (p.first_row, p.last_row as u16);
+            self.open.retain(|&l| l as i16 >= row);
+            if self.open.push(last).is_err() {
+                return Err(Error::Capacity {
+                    table: Table::ActivePolygons,
+                    needed: self.max_active_exact(),
+                    capacity: A as u32,
+                });
+            }
+            max = max.max(self.open.len() as u32);
+        }
+        for p in self.polygons.iter_mut() {
+            p.slot = NONE;
+        }
+        Ok(max)
+    }
+
+    /// The exact maximum by brute force, only when reporting an overflow.
+    fn max_active_exact(&self) -> u32 {
+        let ps = &self.polygons;
+        ps.iter()
+            .map(|p| {
+                ps.iter()
+                    .filter(|q| q.first_row <= p.first_row && p.first_row <= q.last_row)
+                    .count() as u32
+            })
+            .max()
+            .unwrap_or(0)
+    }
+
+    fn run_rows<K: RowSink<N>>(
+        &mut self,
+        cfg: &Config,
+        sink: &mut K,
+        stats: &mut FrameStats,
+    ) -> Result<(), K::Error> {
+        let s = cfg.subpixel_bits as u32;
+        let width = cfg.width as usize;
+        let mut cursor = 0;
+        for y in 0..cfg.height as i32 {
+            // New edges from the edge table.
+            while let Some(e) = self
+                .edges
+                .get(cursor)
+                .copied()
+                .filter(|e| e.first_row as i32 == y)
+            {
+                cursor += 1;
+                self.activate(e.poly, e.side, e.dda_at(y, s), e.last_row);
+            }
+            // This row's spans, and the depth at each span's left end.
+            for a in self.active.iter_mut() {
+                let (xl, xr) = (a.left.x, a.right.x);
+                if a.fresh {
+                    a.z_left = self.polygons[a.poly as usize].plane.at(xl, y);
+                    a.fresh = false;
+                } else {
+                    a.z_left = a.z_left.step(a.dzdx, xl - a.xl).step(a.dzdy, 1);
+                }
+                a.xl = xl;
+                a.xr = xr;
+            }
+            self.sort_active();
+            self.resolve_row(width, cfg.background, stats);
+            sink.write_row(&Row {
+                y: y as u16,
+                intensity: &self.intensity[..width],
+                depth: &self.depth[..width],
+            })?;
+            self.advance(y);
+        }
+        Ok(())
+    }
+
+    fn activate(&mut self, poly: u16, side: Side, dda: Dda, last: i16) {
+        let entry = &mut self.polygons[poly as usize];
+        if entry.slot == NONE {
+            let a = Active {
+                left: Dda::default(),
+                right: Dda::default(),
+                z_left: N::ZERO,
+                dzdx: entry.plane.dzdx,
+                dzdy: entry.plane.dzdy,
+                xl: 0,
+                xr: 0,
+                left_last: -1,
+                right_last: -1,
+                last_row: entry.last_row,
+                poly,
+                color: entry.color,
+                fresh: true,
+            };
+            // Cannot fail: `max_active` checked the capacity for every row.
+            if self.active.push(a).is_err() {
+                return;
+            }
+            entry.slot = (self.active.len() - 1) as u16;
+        }
+        let a = &mut self.active[entry.slot as usize];
+        match side {
+            Side::Left => (a.left, a.left_last) = (dda, last),
+            Side::Right => (a.right, a.right_last) = (dda, last),
+        }
+    }
+
+    /// Insertion sort by left end: the order barely changes from row to row.
+    fn sort_active(&mut self) {
+        let a = &mut self.active;
+        let mut moved = false;
+        for i in 1..a.len() {
+            let mut j = i;
+            while j > 0 && a[j - 1].xl > a[j].xl {
+                a.swap(j - 1, j);
+                j -= 1;
+                moved = true;
+            }
+        }
+        if moved {
+            for (i, act) in a.iter().enumerate() {
+                self.polygons[act.poly as usize].slot = i as u16;
+            }
+        }
+    }
+
+    /// Retires what ends on row `y` and steps the rest to the next row.
+    fn advance(&mut self, y: i32) {
+        let mut i = 0;
+        while i < self.active.len() {
+            let a = &mut self.active[i];
+            if a.last_row as i32 <= y {
+                self.polygons[a.poly as usize].slot = NONE;
+                self.active.swap_remove(i);
+                if let Some(moved) = self.active.get(i) {
+                    self.polygons[moved.poly as usize].slot = i as u16;
+                }
+                continue;
+            }
+            if a.left_last as i32 > y {
+                a.left.step();
+            }
+            if a.right_last as i32 > y {
+                a.right.step();
+            }
+            i += 1;
+        }
+    }
+
+    /// Sweeps the row left to right, cutting it at every span end.
+    fn resolve_row(&mut self, width: usize, background: Rgb565, stats: &mut FrameStats) {
+        let w = width as i32;
+        let (active, open) = (&self.active, &mut self.open);
+        open.clear();
+        let (mut cur, mut k) = (0i32, 0usize);
+        loop {
+            while k < active.len() && active[k].xl <= cur {
+                if active[k].xr > cur {
+                    // Cannot fail: `open` has the active list's capacity.
+                    let _ = open.push(k as u16);
+                }
+                k += 1;
+            }
+            let next_start = active.get(k).map_or(w, |a| a.xl.min(w));
+            let next_end = open
+                .iter()
+                .map(|&i| active[i as usize].xr)
+                .min()
+                .unwrap_or(w)
+                .min(w);
+            let next = next_start.min(next_end);
+            let (x0, x1) = (cur as usize, next as usize);
+            match open.len() {
+                0 => {
+                    self.intensity[x0..x1].fill(background);
+                    self.depth[x0..x1].fill(N::MAX);
+                }
+                1 => fill(
+                    &mut self.depth,
+                    &mut self.intensity,
+                    &active[open[0] as usize],
+                    x0,
+                    x1,
+                ),
+                _ => {
+                    let first = winner(active, open, cur);
+                    let last = winner(active, open, next - 1);
+                    if first == last {
+                        stats.coherent_spans += 1;
+                        fill(&mut self.depth, &mut self.intensity, &active[first], x0, x1);
+                    } else {
+                        stats.per_pixel += (x1 - x0) as u32;
+                        for x in x0..x1 {
+                            let a = &active[winner(active, open, x as i32)];
+                            self.depth[x] = depth_at(a, x as i32);
+                            self.intensity[x] = a.color;
+                        }
+                    }
+                }
+            }
+            cur = next;
+            if cur >= w {
+                break;
+            }
+            open.retain(|&i| active[i as usize].xr > cur);
+        }
+    }
+}
+
+#[inline]
+fn depth_at<N: Scalar>(a: &Active<N>, x: i32) -> N {
+    a.z_left.step(a.dzdx, x - a.xl)
+}
+
+/// Fills `x0..x1` with one polygon, stepping its depth one pixel at a time.
+#[inline]
+fn fill<N: Scalar>(depth: &mut [N], intensity: &mut [Rgb565], a: &Active<N>, x0: usize, x1: usize) {
+    let mut z = depth_at(a, x0 as i32);
+    for d in &mut depth[x0..x1] {
+        *d = z;
+        z = z.step(a.dzdx, 1);
+    }
+    intensity[x0..x1].fill(a.color);
+}
+
+/// The visible polygon at column `x`: least depth, then first in the scene.
+#[inline]
+fn winner<N: Scalar>(active: &[Active<N>], open: &[u16], x: i32) -> usize {
+    let mut best = open[0] as usize;
+    let mut bz = depth_at(&active[best], x);
+    for &i in &open[1..] {
+        let i = i as usize;
+        let z = depth_at(&active[i], x);
+        if z < bz || (z == bz && active[i].poly < active[best].poly) {
+            best = i;
+            bz = z;
+        }
+    }
+    best
+}
+
+/// RAM the scan-line renderer needs for a scene with these requirements, in bytes: its tables
+/// at exactly the sizes required plus its two rows.
+pub fn ram_bytes<N: Scalar>(req: &Requirements) -> usize {
+    use core::mem::size_of;
+    req.polygons as usize * size_of::<PolygonEntry<N>>()
+        + req.edges as usize * size_of::<Edge>()
+        + req.active_polygons as usize * (size_of::<Active<N>>() + size_of::<u16>())
+        + req.width as usize * (size_of::<N>() + size_of::<Rgb565>())
+}

@@ -1,0 +1,152 @@
+//! The scene model: meshes as borrowed slices (so they can live in flash), objects with a model
+//! transform, a camera, one directional light; and screen-space scenes.
+
+use crate::error::Error;
+use crate::math::{Affine, Vec3};
+use crate::number::Scalar;
+use crate::raster::{Config, RasterPolygon};
+use embedded_graphics_core::pixelcolor::Rgb565;
+
+/// A face: a convex planar polygon given by vertex indices, and its colour.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Face<'a> {
+    /// Indices into the mesh's vertices, in order. Counter-clockwise seen from outside for
+    /// meshes that are culled.
+    pub indices: &'a [u16],
+    /// Colour (screen-space mode draws it as is; model mode shades it).
+    pub color: Rgb565,
+}
+
+/// A mesh: vertices and faces, both borrowed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Mesh<'a, N> {
+    /// Vertex positions.
+    pub vertices: &'a [Vec3<N>],
+    /// Faces.
+    pub faces: &'a [Face<'a>],
+}
+
+/// A mesh placed in the world.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Object<'a, N> {
+    /// The mesh.
+    pub mesh: &'a Mesh<'a, N>,
+    /// Model → world transform.
+    pub transform: Affine<N>,
+}
+
+/// How the camera projects.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Projection<N> {
+    /// Perspective: `focal` = cot(vertical field of view / 2).
+    Perspective {
+        /// cot(fov_y / 2).
+        focal: N,
+        /// Near plane distance (> 0): only geometry beyond it is drawn.
+        near: N,
+        /// Far plane distance.
+        far: N,
+    },
+    /// Orthographic: `half_height` world units from the centre to the top of the screen.
+    Orthographic {
+        /// Half the visible height in world units.
+        half_height: N,
+        /// Near plane distance.
+        near: N,
+        /// Far plane distance.
+        far: N,
+    },
+}
+
+/// A camera: a world → view transform (looking down −z, y up) and a projection.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera<N> {
+    /// World → view.
+    pub view: Affine<N>,
+    /// Projection.
+    pub projection: Projection<N>,
+}
+
+impl<N: Scalar> Camera<N> {
+    /// A look-at camera, computed in `f32` and converted. `None` if `eye == target`, `up` is
+    /// parallel to the view direction, or a value does not fit the format.
+    pub fn look_at(
+        eye: [f32; 3],
+        target: [f32; 3],
+        up: [f32; 3],
+        projection: Projection<N>,
+    ) -> Option<Self> {
+        let sub = |a: [f32; 3], b: [f32; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+        let cross = |a: [f32; 3], b: [f32; 3]| {
+            [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ]
+        };
+        let dot = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let norm = |a: [f32; 3]| {
+            let l = Scalar::sqrt(dot(a, a));
+            (l > 1e-12).then(|| [a[0] / l, a[1] / l, a[2] / l])
+        };
+        let back = norm(sub(eye, target))?; // view +z points from the target to the eye
+        let right = norm(cross(up, back))?;
+        let up = cross(back, right);
+        let view = Affine::from_f32([
+            [right[0], right[1], right[2], -dot(right, eye)],
+            [up[0], up[1], up[2], -dot(up, eye)],
+            [back[0], back[1], back[2], -dot(back, eye)],
+        ])?;
+        Some(Camera { view, projection })
+    }
+
+    /// A perspective projection from a vertical field of view in radians.
+    pub fn perspective(fov_y: f32, near: f32, far: f32) -> Option<Projection<N>> {
+        use micromath::F32Ext;
+        let focal = 1.0 / (fov_y * 0.5).tan();
+        Some(Projection::Perspective {
+            focal: N::from_f32(focal)?,
+            near: N::from_f32(near)?,
+            far: N::from_f32(far)?,
+        })
+    }
+}
+
+/// One directional light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Light<N> {
+    /// Direction towards the light, in world space (need not be unit length).
+    pub direction: Vec3<N>,
+    /// Ambient fraction 0..=1 of the face colour that unlit faces keep.
+    pub ambient: N,
+}
+
+/// A scene in model mode: objects, a camera, a light. Faces are flat (Lambert) shaded.
+#[derive(Clone, Copy, Debug)]
+pub struct ModelScene<'a, N> {
+    /// Objects, drawn in order (earlier wins depth ties).
+    pub objects: &'a [Object<'a, N>],
+    /// The camera.
+    pub camera: Camera<N>,
+    /// The light.
+    pub light: Light<N>,
+}
+
+/// A scene whose vertices are already in screen space: x right and y down in pixels, z depth
+/// (smaller is nearer), projected orthographically along z, each face in its own colour.
+#[derive(Clone, Copy, Debug)]
+pub struct ScreenScene<'a, N> {
+    /// The mesh.
+    pub mesh: Mesh<'a, N>,
+}
+
+/// Anything that can feed polygons to a renderer: runs geometry and calls `f` with every
+/// polygon that survives it, in scene order.
+pub trait Scene<N: Scalar> {
+    /// Streams the scene's polygons, clipped, projected and snapped for `cfg`.
+    fn polygons(
+        &self,
+        cfg: &Config,
+        f: &mut dyn FnMut(&RasterPolygon<N>) -> Result<(), Error>,
+    ) -> Result<(), Error>;
+}

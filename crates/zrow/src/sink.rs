@@ -1,0 +1,78 @@
+//! Where finished rows go: the [`RowSink`] trait and two sinks.
+
+use core::convert::Infallible;
+use embedded_graphics_core::draw_target::DrawTarget;
+use embedded_graphics_core::geometry::{Point, Size};
+use embedded_graphics_core::pixelcolor::Rgb565;
+use embedded_graphics_core::primitives::Rectangle;
+
+/// One finished row: the seeds' `intensity[x]` and `depth[x]`.
+#[derive(Clone, Copy, Debug)]
+pub struct Row<'a, N> {
+    /// Row number, 0 at the top.
+    pub y: u16,
+    /// The colour of every pixel, left to right.
+    pub intensity: &'a [Rgb565],
+    /// The visible depth at every pixel (the format's maximum where nothing is drawn).
+    pub depth: &'a [N],
+}
+
+/// Receives rows top to bottom, each complete. Like embedded-graphics' `DrawTarget`, it says
+/// how it fails: `Infallible` for memory, the bus error on a display.
+pub trait RowSink<N> {
+    /// The sink's error.
+    type Error;
+    /// Takes one row.
+    fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), Self::Error>;
+}
+
+/// An in-memory frame over the caller's pixels (row-major, `width` a row). Rows or columns
+/// that do not fit are ignored.
+pub struct FrameBuffer<'a> {
+    pixels: &'a mut [Rgb565],
+    width: usize,
+}
+
+impl<'a> FrameBuffer<'a> {
+    /// Wraps a pixel slice whose rows are `width` long.
+    pub fn new(pixels: &'a mut [Rgb565], width: usize) -> Self {
+        FrameBuffer { pixels, width }
+    }
+    /// The pixel at (x, y), if inside.
+    pub fn pixel(&self, x: usize, y: usize) -> Option<Rgb565> {
+        if x >= self.width {
+            return None;
+        }
+        self.pixels.get(y * self.width + x).copied()
+    }
+    /// All pixels.
+    pub fn pixels(&self) -> &[Rgb565] {
+        self.pixels
+    }
+}
+
+impl<N> RowSink<N> for FrameBuffer<'_> {
+    type Error = Infallible;
+    fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), Infallible> {
+        let start = row.y as usize * self.width;
+        let n = row.intensity.len().min(self.width);
+        if let Some(dst) = self.pixels.get_mut(start..start + n) {
+            dst.copy_from_slice(&row.intensity[..n]);
+        }
+        Ok(())
+    }
+}
+
+/// Sends rows to any embedded-graphics [`DrawTarget`] (a display driver, the simulator).
+pub struct DrawTargetSink<'a, D>(pub &'a mut D);
+
+impl<N, D: DrawTarget<Color = Rgb565>> RowSink<N> for DrawTargetSink<'_, D> {
+    type Error = D::Error;
+    fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), D::Error> {
+        let area = Rectangle::new(
+            Point::new(0, row.y as i32),
+            Size::new(row.intensity.len() as u32, 1),
+        );
+        self.0.fill_contiguous(&area, row.intensity.iter().copied())
+    }
+}
