@@ -98,11 +98,17 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     fn lerp_clip(a0: Self, a1: Self, c0: Self, c1: Self, bound: Self) -> Self;
 
     /// The depth plane through a polygon's snapped vertices (Newell's normal, so a polygon
-    /// that snapping made slightly non-planar gets its best-fit plane), referenced at the
-    /// pixel containing vertex 0. `None` for zero area.
+    /// that snapping made slightly non-planar gets its best-fit plane). `None` for zero area.
+    /// The caller passes the vertices in a canonical order ([`crate::raster::setup`] starts at
+    /// the top-left vertex, clockwise), so the same polygon gives the same bits whatever order
+    /// its vertices came in.
     ///
-    /// Error bound: `z_ref` and both gradients are each within 0.5 LSB of the exact plane
-    /// through the snapped vertices (Q16.16: computed in 128-bit integers, rounded once).
+    /// - Q16.16: referenced at pixel (0, 0) and computed in 128-bit integers, each of `z_ref`,
+    ///   `dzdx`, `dzdy` rounded once from the exact plane, so **coplanar polygons get identical
+    ///   depth bits** and depth ties are exact ties. `z_ref` wraps (see [`Scalar::step`]).
+    ///   Error at pixel (i, j): at most 0.5·(1 + i + j) LSB.
+    /// - f32: referenced at the pixel of the first vertex (keeps values small, so little
+    ///   cancellation); error a few ULP of the depths and gradients involved.
     fn depth_plane(v: &[RasterVertex<Self>], subpixel_bits: u32) -> Option<DepthPlane<Self>>;
 }
 
@@ -208,17 +214,16 @@ impl Scalar for Q16_16 {
         let (a, b, c) = if c < 0 { (-a, -b, -c) } else { (a, b, c) };
         let s = subpixel_bits;
         let (x0, y0, z0) = pts[0];
-        let i_ref = (x0 >> s) as i32;
-        let j_ref = (y0 >> s) as i32;
+        // Pixel (0, 0)'s centre: z − z0 = −(A·(x − x0) + B·(y − y0)) / C, x and y in
+        // sub-pixels, z in raw bits.
         let half = 1i128 << s >> 1;
-        let xs = ((i_ref as i128) << s) + half;
-        let ys = ((j_ref as i128) << s) + half;
-        // z − z0 = −(A·(x − x0) + B·(y − y0)) / C, x and y in sub-pixels, z in raw bits.
-        let z_ref = z0 + div_round(-(a * (xs - x0) + b * (ys - y0)), c);
+        let z_ref = z0 + div_round(-(a * (half - x0) + b * (half - y0)), c);
         let dzdx = div_round(-(a << s), c);
         let dzdy = div_round(-(b << s), c);
+        let (i_ref, j_ref) = (0, 0);
         Some(DepthPlane {
-            z_ref: Q16_16::from_bits(sat_i32(z_ref)),
+            // Wraps: exact modulo 2^32, like every later step.
+            z_ref: Q16_16::from_bits(z_ref as i32),
             dzdx: Q16_16::from_bits(sat_i32(dzdx)),
             dzdy: Q16_16::from_bits(sat_i32(dzdy)),
             i_ref,

@@ -322,7 +322,18 @@ pub fn setup<N: Scalar>(
     if edges.is_empty() {
         return Ok(None);
     }
-    let Some(plane) = N::depth_plane(v, s) else {
+    // Canonical order for the plane: from the top-left vertex, clockwise on the display.
+    let start = (0..v.len()).min_by_key(|&k| (v[k].y, v[k].x)).unwrap_or(0);
+    let mut canonical = [RasterVertex::default(); MAX_POLYGON_VERTICES];
+    for (k, c) in canonical.iter_mut().take(v.len()).enumerate() {
+        let at = if area > 0 {
+            start + k
+        } else {
+            start + v.len() - k
+        };
+        *c = v[at % v.len()];
+    }
+    let Some(plane) = N::depth_plane(&canonical[..v.len()], s) else {
         return Ok(None);
     };
     Ok(Some(SetupPolygon {

@@ -1,0 +1,282 @@
+//! Test support: an exact reference renderer for screen-space scenes, scene builders and a
+//! sink that keeps the whole frame (colours and depth bits) and counts what it receives.
+#![allow(dead_code)]
+
+use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+use zrow::{Config, Face, Mesh, Row, RowSink, Scalar, Scanline, ScreenScene, Vec3};
+
+/// Host capacities big enough for every test scene.
+pub type Big<N> = Scanline<N, 256, 4096, 16384, 1024>;
+
+/// A whole frame captured from rows.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Capture<N> {
+    pub width: usize,
+    pub height: usize,
+    pub color: Vec<Rgb565>,
+    pub depth: Vec<N>,
+    pub rows_received: usize,
+    /// Rows must arrive top to bottom, each once.
+    pub next_row: u16,
+}
+
+impl<N: Scalar> Capture<N> {
+    pub fn new(width: usize, height: usize) -> Self {
+        Capture {
+            width,
+            height,
+            color: vec![Rgb565::BLACK; width * height],
+            depth: vec![N::MAX; width * height],
+            rows_received: 0,
+            next_row: 0,
+        }
+    }
+    pub fn at(&self, x: usize, y: usize) -> Rgb565 {
+        self.color[y * self.width + x]
+    }
+    pub fn z(&self, x: usize, y: usize) -> N {
+        self.depth[y * self.width + x]
+    }
+    pub fn drawn(&self) -> usize {
+        self.color.iter().filter(|&&c| c != Rgb565::BLACK).count()
+    }
+}
+
+impl<N: Scalar> RowSink<N> for Capture<N> {
+    type Error = ();
+    fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), ()> {
+        assert_eq!(row.y, self.next_row, "rows out of order");
+        assert_eq!(row.intensity.len(), self.width, "row length");
+        assert_eq!(row.depth.len(), self.width, "depth row length");
+        self.next_row += 1;
+        self.rows_received += 1;
+        let o = row.y as usize * self.width;
+        self.color[o..o + self.width].copy_from_slice(row.intensity);
+        self.depth[o..o + self.width].copy_from_slice(row.depth);
+        Ok(())
+    }
+}
+
+/// A distinct, non-black colour for polygon `i` (so a colour names its polygon).
+pub fn color_of(i: usize) -> Rgb565 {
+    let i = i + 1;
+    Rgb565::new(
+        (i % 32) as u8,
+        ((i / 32) % 64) as u8,
+        ((i / 2048) % 32) as u8,
+    )
+}
+
+pub fn index_of(c: Rgb565) -> Option<usize> {
+    if c == Rgb565::BLACK {
+        return None;
+    }
+    Some(c.r() as usize + 32 * c.g() as usize + 2048 * c.b() as usize - 1)
+}
+
+/// Owned screen-space polygons, turned into a `ScreenScene` on demand.
+#[derive(Clone, Debug)]
+pub struct Polys {
+    pub polys: Vec<Vec<[f32; 3]>>,
+}
+
+impl Polys {
+    pub fn new(polys: Vec<Vec<[f32; 3]>>) -> Self {
+        Polys { polys }
+    }
+    /// Renders with the scan-line method into a capture.
+    pub fn render<N: Scalar>(&self, cfg: &Config) -> Result<Capture<N>, zrow::RenderError<()>> {
+        let mut verts = Vec::new();
+        let mut idx: Vec<Vec<u16>> = Vec::new();
+        for p in &self.polys {
+            let mut f = Vec::new();
+            for v in p {
+                f.push(verts.len() as u16);
+                verts.push(Vec3::<N>::from_f32(*v).expect("test vertex fits format"));
+            }
+            idx.push(f);
+        }
+        let faces: Vec<Face> = idx
+            .iter()
+            .enumerate()
+            .map(|(i, f)| Face {
+                indices: f,
+                color: color_of(i),
+            })
+            .collect();
+        let scene = ScreenScene {
+            mesh: Mesh {
+                vertices: &verts,
+                faces: &faces,
+            },
+        };
+        let mut r = Box::new(Big::<N>::new());
+        let mut cap = Capture::new(cfg.width as usize, cfg.height as usize);
+        r.render(&scene, cfg, &mut cap)?;
+        Ok(cap)
+    }
+}
+
+/// The exact reference's verdict for one pixel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Verdict {
+    /// Nothing covers the sample.
+    Empty,
+    /// Polygon `i` is visible, at depth `z`.
+    Visible(usize, f64),
+    /// Two polygons are within the depth tolerance of each other: either may win.
+    Tie(usize, usize),
+}
+
+/// Snaps like the renderer does (the convention, tested separately): round to the nearest
+/// 2^-S, ties up, on the value the format holds.
+pub fn snap<N: Scalar>(v: f32, s: u32) -> i64 {
+    N::from_f32(v).unwrap().snap(s).unwrap() as i64
+}
+
+/// Exact reference for screen-space scenes.
+///
+/// Coverage: integer edge functions on the snapped vertices with the top-left rule written
+/// directly from its definition (not the renderer's row/column walk). Depth: the plane through
+/// the snapped vertices (Newell), in f64. Pixels where the two nearest polygons are within
+/// `tie` of each other are ties.
+pub fn reference<N: Scalar>(p: &Polys, cfg: &Config, tie: f64) -> Vec<Verdict> {
+    let s = cfg.subpixel_bits as u32;
+    let (w, h) = (cfg.width as usize, cfg.height as usize);
+    let mut out = vec![Verdict::Empty; w * h];
+    struct Snapped {
+        v: Vec<(i64, i64, f64)>,
+        normal: (f64, f64, f64),
+    }
+    let snapped: Vec<Option<Snapped>> = p
+        .polys
+        .iter()
+        .map(|poly| {
+            let mut v: Vec<(i64, i64, f64)> = poly
+                .iter()
+                .map(|q| {
+                    (
+                        snap::<N>(q[0], s),
+                        snap::<N>(q[1], s),
+                        N::from_f32(q[2]).unwrap().to_f32() as f64,
+                    )
+                })
+                .collect();
+            let area: i64 = (0..v.len())
+                .map(|k| {
+                    let (a, b) = (v[k], v[(k + 1) % v.len()]);
+                    a.0 * b.1 - b.0 * a.1
+                })
+                .sum();
+            if area == 0 {
+                return None;
+            }
+            if area < 0 {
+                v.reverse();
+            }
+            let (mut a, mut b, mut c) = (0.0, 0.0, 0.0);
+            for k in 0..v.len() {
+                let (p0, p1) = (v[k], v[(k + 1) % v.len()]);
+                let (x0, y0, x1, y1) = (p0.0 as f64, p0.1 as f64, p1.0 as f64, p1.1 as f64);
+                a += (y0 - y1) * (p0.2 + p1.2);
+                b += (p0.2 - p1.2) * (x0 + x1);
+                c += (x0 - x1) * (y0 + y1);
+            }
+            Some(Snapped {
+                v,
+                normal: (a, b, c),
+            })
+        })
+        .collect();
+    let half = 1i64 << s >> 1;
+    for j in 0..h {
+        for i in 0..w {
+            let xs = ((i as i64) << s) + half;
+            let ys = ((j as i64) << s) + half;
+            let mut hits: Vec<(f64, usize)> = Vec::new();
+            for (k, sp) in snapped.iter().enumerate() {
+                let Some(sp) = sp else { continue };
+                let n = sp.v.len();
+                let inside = (0..n).all(|e| {
+                    let (a, b) = (sp.v[e], sp.v[(e + 1) % n]);
+                    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+                    let f = dx as i128 * (ys - a.1) as i128 - dy as i128 * (xs - a.0) as i128;
+                    // Interior is where f > 0 (vertices ordered clockwise on the display).
+                    // On the edge: a left edge (going up) or a top edge (horizontal, going
+                    // right) owns the sample.
+                    f > 0 || (f == 0 && (dy < 0 || (dy == 0 && dx > 0)))
+                });
+                if inside {
+                    let (a, b, c) = sp.normal;
+                    let (x0, y0, z0) = sp.v[0];
+                    let z = z0 - (a * (xs - x0) as f64 + b * (ys - y0) as f64) / c;
+                    hits.push((z, k));
+                }
+            }
+            hits.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            out[j * w + i] = match hits.as_slice() {
+                [] => Verdict::Empty,
+                [(z, k)] => Verdict::Visible(*k, *z),
+                [(z0, k0), (z1, k1), ..] => {
+                    if z1 - z0 <= tie {
+                        Verdict::Tie(*k0, *k1)
+                    } else {
+                        Verdict::Visible(*k0, *z0)
+                    }
+                }
+            };
+        }
+    }
+    out
+}
+
+/// Compares a capture with the reference; returns the mismatching pixels (x, y, want, got).
+pub fn mismatches<N: Scalar>(
+    cap: &Capture<N>,
+    refr: &[Verdict],
+) -> Vec<(usize, usize, Verdict, Option<usize>)> {
+    let mut bad = Vec::new();
+    for y in 0..cap.height {
+        for x in 0..cap.width {
+            let got = index_of(cap.at(x, y));
+            let want = refr[y * cap.width + x];
+            let ok = match want {
+                Verdict::Empty => got.is_none(),
+                Verdict::Visible(k, _) => got == Some(k),
+                Verdict::Tie(a, b) => got == Some(a) || got == Some(b),
+            };
+            if !ok {
+                bad.push((x, y, want, got));
+            }
+        }
+    }
+    bad
+}
+
+/// Depth tolerance of a format for frames up to `extent` pixels across: Q16.16 steps are
+/// within 0.5 LSB per pixel or row stepped from the reference pixel plus 0.5 LSB at it.
+pub fn tie_tolerance<N: Scalar>(extent: usize) -> f64 {
+    if N::NAME == "f32" {
+        1e-3
+    } else {
+        (1.0 + extent as f64) / 65536.0
+    }
+}
+
+/// A tiny deterministic generator (xorshift64*).
+pub struct Rng(pub u64);
+impl Rng {
+    pub fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+    /// Uniform in [lo, hi).
+    pub fn f(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * ((self.next() >> 40) as f32 / (1u64 << 24) as f32)
+    }
+    pub fn below(&mut self, n: u64) -> u64 {
+        self.next() % n
+    }
+}
