@@ -1,0 +1,35 @@
+//! # zrow-sim — the zrow simulator on the host
+//!
+//! Renders zrow scenes without the hardware, for tests, golden images and looking at the
+//! result. The command (GUIDE §2):
+//!
+//! ```text
+//! cargo run --release -p zrow-sim -- render --screen SCENE.off --size 240x240 --algo scanline --out OUT.png
+//! ```
+//!
+//! The pipeline, in the order a command goes through it:
+//!
+//! 1. [`cli`] parses the arguments;
+//! 2. [`off`] parses the scene file, every error naming its file and line;
+//! 3. [`render`] builds a [`zrow::ScreenScene`], measures it with [`zrow::requirements()`] and
+//!    renders it with the chosen method and number format into an [`render::Image`];
+//! 4. [`png_io`] writes the PNG.
+//!
+//! Every failure is a [`SimError`] that prints on one line.
+//!
+//! ```
+//! use zrow_sim::{off, render::{render_screen, Algo, Format}};
+//! let scene = off::parse("tri.off", b"OFF\n3 1 0\n0 0 0\n8 0 0\n0 8 0\n3 0 1 2 255 0 0\n").unwrap();
+//! let image = render_screen(&scene, 8, 8, Algo::Scanline, Format::Q16_16).unwrap();
+//! assert_eq!(&image.to_rgb8()[..3], &[255, 0, 0]); // pixel (0, 0) is red
+//! ```
+#![forbid(unsafe_code)]
+#![deny(missing_docs)]
+
+pub mod cli;
+pub mod error;
+pub mod off;
+pub mod png_io;
+pub mod render;
+
+pub use error::SimError;

@@ -1,0 +1,352 @@
+//! Screen-space rendering of a parsed OFF scene with one of zrow's methods.
+//!
+//! The scene goes to zrow as a [`zrow::ScreenScene`]: vertices are pixels (x right, y down),
+//! z is depth (smaller is nearer), each face keeps its own colour. [`zrow::requirements()`]
+//! measures the tables the scene needs first; a scene that fits the host's fixed capacities
+//! ([`HOST_WIDTH`], [`HOST_POLYGONS`], [`HOST_EDGES`], [`HOST_ACTIVE`]) is then drawn into an
+//! in-memory [`Image`], one finished row at a time.
+//!
+//! The renderer keeps all its tables inline (that is what lets it live in a microcontroller's
+//! static RAM), which at these capacities is a couple of megabytes: more than a test thread's
+//! stack. It is therefore built and run on a thread of its own with a stack sized from
+//! [`HostScanline::RAM_BYTES`].
+
+use crate::error::SimError;
+use crate::off::OffScene;
+use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+use zrow::{Config, Face, FrameBuffer, Mesh, RenderError, Requirements, Scalar, Scanline};
+use zrow::{ScreenScene, Table, Q16_16};
+
+/// Widest frame the host renders (zrow's largest viewport).
+pub const HOST_WIDTH: usize = zrow::raster::MAX_VIEWPORT as usize;
+/// Polygon-table capacity of the host renderer.
+pub const HOST_POLYGONS: usize = 16384;
+/// Edge-table capacity of the host renderer.
+pub const HOST_EDGES: usize = 49152;
+/// Active-list capacity of the host renderer (polygons crossing one row).
+pub const HOST_ACTIVE: usize = 4096;
+
+/// The scan-line renderer at the host's capacities.
+pub type HostScanline<N> = Scanline<N, HOST_WIDTH, HOST_POLYGONS, HOST_EDGES, HOST_ACTIVE>;
+
+/// A hidden-surface method, by its `--algo` name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Algo {
+    /// The scan-line method (`zrow::Scanline`).
+    Scanline,
+}
+
+impl Algo {
+    /// Every accepted method with its name, in the order `--help` lists them.
+    pub const ALL: &'static [(&'static str, Algo)] = &[("scanline", Algo::Scanline)];
+
+    /// The method called `name`, if there is one.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.iter().find(|(n, _)| *n == name).map(|&(_, a)| a)
+    }
+
+    /// Its `--algo` name.
+    pub fn name(self) -> &'static str {
+        Self::ALL
+            .iter()
+            .find(|&&(_, a)| a == self)
+            .map_or("?", |&(n, _)| n)
+    }
+
+    /// The accepted names, comma-separated (for messages).
+    pub fn names() -> String {
+        Self::ALL
+            .iter()
+            .map(|(n, _)| *n)
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+}
+
+/// The number format the renderer computes in, by its `--format` name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Format {
+    /// Q16.16 fixed point (the microcontroller's format; the default).
+    #[default]
+    Q16_16,
+    /// IEEE single precision.
+    F32,
+}
+
+impl Format {
+    /// Every format with its name.
+    pub const ALL: &'static [(&'static str, Format)] =
+        &[("q16.16", Format::Q16_16), ("f32", Format::F32)];
+
+    /// The format called `name`, if there is one.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.iter().find(|(n, _)| *n == name).map(|&(_, f)| f)
+    }
+
+    /// Its `--format` name (also zrow's [`Scalar::NAME`]).
+    pub fn name(self) -> &'static str {
+        match self {
+            Format::Q16_16 => Q16_16::NAME,
+            Format::F32 => f32::NAME,
+        }
+    }
+
+    /// The accepted names, comma-separated (for messages).
+    pub fn names() -> String {
+        Self::ALL
+            .iter()
+            .map(|(n, _)| *n)
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+}
+
+/// A rendered frame in Rgb565, row-major.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Image {
+    /// Width in pixels.
+    pub width: u16,
+    /// Height in pixels.
+    pub height: u16,
+    /// `width × height` pixels, top row first.
+    pub pixels: Vec<Rgb565>,
+}
+
+impl Image {
+    /// The pixel at (x, y).
+    pub fn pixel(&self, x: u16, y: u16) -> Option<Rgb565> {
+        (x < self.width)
+            .then(|| {
+                self.pixels
+                    .get(y as usize * self.width as usize + x as usize)
+            })
+            .flatten()
+            .copied()
+    }
+
+    /// The pixels as 8-bit RGB triples (see [`rgb565_to_rgb8`]).
+    pub fn to_rgb8(&self) -> Vec<u8> {
+        self.pixels
+            .iter()
+            .flat_map(|&c| rgb565_to_rgb8(c))
+            .collect()
+    }
+}
+
+/// Rgb565 to 8-bit RGB, rounding to nearest: `r8 = (r5·255 + 15) / 31`, `g8 = (g6·255 + 31)
+/// / 63`, `b8` like `r8`. Full scale maps to 255 and zero to 0.
+pub fn rgb565_to_rgb8(c: Rgb565) -> [u8; 3] {
+    let scale = |v: u8, max: u32| ((v as u32 * 255 + max / 2) / max) as u8;
+    [scale(c.r(), 31), scale(c.g(), 63), scale(c.b(), 31)]
+}
+
+/// Renders `scene` in screen-space mode at `width × height` pixels (each 1..=2048).
+///
+/// Errors: a vertex that does not fit `format` (named by its line), a face zrow rejects (named
+/// by the face's line), a scene that needs more than the host capacities.
+pub fn render_screen(
+    scene: &OffScene,
+    width: u16,
+    height: u16,
+    algo: Algo,
+    format: Format,
+) -> Result<Image, SimError> {
+    match (algo, format) {
+        (Algo::Scanline, Format::Q16_16) => scanline::<Q16_16>(scene, width, height),
+        (Algo::Scanline, Format::F32) => scanline::<f32>(scene, width, height),
+    }
+}
+
+/// Measures what `scene` needs at this size in format `N` (checks every face on the way).
+pub fn measure<N: Scalar>(
+    scene: &OffScene,
+    width: u16,
+    height: u16,
+) -> Result<Requirements, SimError> {
+    let vertices = scene.vertices_in::<N>()?;
+    let faces = faces(scene);
+    let screen = screen_scene(&vertices, &faces);
+    let cfg = Config::screen(width, height);
+    let mut rows = vec![0u32; height as usize + 1];
+    zrow::requirements(&screen, &cfg, &mut rows).map_err(|e| core_error(scene, e))
+}
+
+fn faces(scene: &OffScene) -> Vec<Face<'_>> {
+    scene
+        .faces
+        .iter()
+        .map(|f| Face {
+            indices: &f.indices,
+            color: f.rgb565(),
+        })
+        .collect()
+}
+
+fn screen_scene<'a, N>(vertices: &'a [zrow::Vec3<N>], faces: &'a [Face<'a>]) -> ScreenScene<'a, N> {
+    ScreenScene {
+        mesh: Mesh { vertices, faces },
+    }
+}
+
+/// A zrow error, blamed on the line of the face it names.
+fn core_error(scene: &OffScene, error: zrow::Error) -> SimError {
+    use zrow::Error::*;
+    let face = match error {
+        IndexOutOfRange { face, .. }
+        | TooFewVertices { face }
+        | TooManyVertices { face }
+        | NonFinite { face }
+        | NotConvex { face } => Some(face),
+        _ => None,
+    };
+    SimError::Scene {
+        file: scene.file.clone(),
+        line: face.and_then(|f| scene.face_line(f)),
+        error,
+    }
+}
+
+/// Checks measured requirements against the host capacities.
+fn check_capacity(req: &Requirements) -> Result<(), zrow::Error> {
+    for (table, needed, capacity) in [
+        (Table::Polygons, req.polygons, HOST_POLYGONS),
+        (Table::Edges, req.edges, HOST_EDGES),
+        (Table::ActivePolygons, req.active_polygons, HOST_ACTIVE),
+        (Table::RowWidth, req.width as u32, HOST_WIDTH),
+    ] {
+        if needed as usize > capacity {
+            return Err(zrow::Error::Capacity {
+                table,
+                needed,
+                capacity: capacity as u32,
+            });
+        }
+    }
+    Ok(())
+}
+
+fn scanline<N: Scalar + Send + Sync>(
+    scene: &OffScene,
+    width: u16,
+    height: u16,
+) -> Result<Image, SimError> {
+    let vertices = scene.vertices_in::<N>()?;
+    let faces = faces(scene);
+    let screen = screen_scene(&vertices, &faces);
+    let cfg = Config::screen(width, height);
+    let mut rows = vec![0u32; height as usize + 1];
+    let req = zrow::requirements(&screen, &cfg, &mut rows).map_err(|e| core_error(scene, e))?;
+    check_capacity(&req).map_err(|e| core_error(scene, e))?;
+
+    let mut pixels = vec![Rgb565::BLACK; width as usize * height as usize];
+    let mut frame = FrameBuffer::new(&mut pixels, width as usize);
+    // Room for the renderer, a copy or two of it that an unoptimised build makes while
+    // constructing it, and the render's own frames.
+    let stack = 3 * HostScanline::<N>::RAM_BYTES + (4 << 20);
+    let result = std::thread::scope(|s| {
+        let worker = std::thread::Builder::new()
+            .name("zrow-render".into())
+            .stack_size(stack)
+            .spawn_scoped(s, || {
+                let mut renderer = HostScanline::<N>::new();
+                renderer.render(&screen, &cfg, &mut frame).map(|_| ())
+            })
+            .map_err(SimError::Thread)?;
+        worker
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+            .map_err(|e| match e {
+                RenderError::Scene(e) => core_error(scene, e),
+                RenderError::Sink(never) => match never {},
+            })
+    });
+    result?;
+    Ok(Image {
+        width,
+        height,
+        pixels,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::off::parse;
+
+    #[test]
+    fn rgb565_round_trips_through_rgb8() {
+        assert_eq!(rgb565_to_rgb8(Rgb565::WHITE), [255; 3]);
+        assert_eq!(rgb565_to_rgb8(Rgb565::BLACK), [0; 3]);
+        assert_eq!(rgb565_to_rgb8(Rgb565::new(16, 32, 1)), [132, 130, 8]);
+        for r in 0..32u8 {
+            for g in 0..64u8 {
+                let c = Rgb565::new(r, g, 31 - r);
+                assert_eq!(crate::off::rgb8_to_rgb565(rgb565_to_rgb8(c)), c);
+            }
+        }
+    }
+
+    #[test]
+    fn names_round_trip() {
+        for &(n, a) in Algo::ALL {
+            assert_eq!(Algo::from_name(n), Some(a));
+            assert_eq!(a.name(), n);
+        }
+        for &(n, f) in Format::ALL {
+            assert_eq!(Format::from_name(n), Some(f));
+            assert_eq!(f.name(), n);
+        }
+        assert_eq!(Algo::from_name("zbuffer"), None);
+    }
+
+    const SEED002: &str = "OFF\n6 2 0\n0 0 6\n6 0 0\n0 6 0\n2 0 6\n6 0 6\n4 4 0\n\
+                           3 0 1 2 255 0 0\n3 3 4 5 0 255 0\n";
+
+    #[test]
+    fn seed_002_s1_is_in_front_at_3_1() {
+        let scene = parse("seed002.off", SEED002.as_bytes()).unwrap();
+        for format in [Format::Q16_16, Format::F32] {
+            let img = render_screen(&scene, 8, 8, Algo::Scanline, format).unwrap();
+            // Pixel (3, 1)'s centre is (3.5, 1.5): inside both, s1 (red) nearer.
+            assert_eq!(img.pixel(3, 1), Some(Rgb565::RED), "{format:?}");
+            assert_eq!(img.pixel(4, 2), Some(Rgb565::GREEN), "{format:?}");
+            assert_eq!(img.pixel(7, 7), Some(Rgb565::BLACK), "{format:?}");
+        }
+    }
+
+    #[test]
+    fn measures_the_scene() {
+        let scene = parse("seed002.off", SEED002.as_bytes()).unwrap();
+        let req = measure::<Q16_16>(&scene, 8, 8).unwrap();
+        assert_eq!((req.polygons, req.active_polygons), (2, 2));
+    }
+
+    #[test]
+    fn a_scene_beyond_the_host_capacities_is_a_typed_error() {
+        // HOST_ACTIVE + 1 thin triangles, all crossing row 0.
+        let n = HOST_ACTIVE + 1;
+        let mut text = format!("OFF\n{} {n} 0\n", 3 * n);
+        for k in 0..n {
+            let x = (k % 200) as f32;
+            text += &format!("{x} 0 1\n{} 0 1\n{x} 4 1\n", x + 1.0);
+        }
+        for k in 0..n {
+            text += &format!("3 {} {} {}\n", 3 * k, 3 * k + 1, 3 * k + 2);
+        }
+        let scene = parse("many.off", text.as_bytes()).unwrap();
+        let e = render_screen(&scene, 240, 8, Algo::Scanline, Format::Q16_16).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            format!("many.off: ActivePolygons capacity {HOST_ACTIVE} is too small: this scene needs {n}")
+        );
+    }
+
+    #[test]
+    fn core_errors_name_the_face_line() {
+        // A non-convex quad on line 8 (after a comment line).
+        let text = "OFF\n4 1 0\n0 0 0\n10 0 0\n2 2 0\n0 10 0\n# bow tie\n4 0 2 1 3\n";
+        let scene = parse("bad.off", text.as_bytes()).unwrap();
+        let e = render_screen(&scene, 16, 16, Algo::Scanline, Format::Q16_16).unwrap_err();
+        assert_eq!(e.to_string(), "bad.off:8: face 0: not convex");
+    }
+}
