@@ -65,6 +65,17 @@ pub enum Error {
     BadConfig,
 }
 
+impl core::fmt::Display for Table {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            Table::Polygons => "polygon table",
+            Table::Edges => "edge table",
+            Table::ActivePolygons => "active list",
+            Table::RowWidth => "row buffer",
+        })
+    }
+}
+
 impl core::fmt::Display for Error {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match *self {
@@ -74,7 +85,7 @@ impl core::fmt::Display for Error {
                 capacity,
             } => write!(
                 f,
-                "{table:?} capacity {capacity} is too small: this scene needs {needed}"
+                "{table} holds {capacity} but this scene needs {needed}: raise that capacity"
             ),
             Error::IndexOutOfRange { face, index } => {
                 write!(f, "face {face}: vertex index {index} out of range")

@@ -170,6 +170,9 @@ pub fn shade<N: Scalar>(c: Rgb565, intensity: N) -> Rgb565 {
     Rgb565::new(s(c.r()), s(c.g()), s(c.b()))
 }
 
+/// Picks one coordinate of a clip-space vertex.
+type Coord<N> = fn(&ClipV<N>) -> N;
+
 /// A clip-space vertex: `x`, `y` scaled by the projection, `w` the distance in front of the eye.
 #[derive(Clone, Copy)]
 struct ClipV<N> {
@@ -230,7 +233,10 @@ impl<N: Scalar> Scene<N> for ModelScene<'_, N> {
                 for v in poly.iter_mut() {
                     *v = mv.apply(*v);
                 }
-                let Some(normal) = poly[1].sub(poly[0]).cross(poly[2].sub(poly[0])).unit_max()
+                let Some(normal) = poly[1]
+                    .minus(poly[0])
+                    .cross(poly[2].minus(poly[0]))
+                    .unit_max()
                 else {
                     continue; // degenerate face: zero area
                 };
@@ -285,7 +291,7 @@ impl<N: Scalar> Scene<N> for ModelScene<'_, N> {
                     this,
                 )?;
                 // Guard-band planes x = ±g·d, written as c = x ∓ g·d crossing 0.
-                let planes: [(fn(&ClipV<N>) -> N, N); 4] = [
+                let planes: [(Coord<N>, N); 4] = [
                     (|v| v.x, gx),
                     (|v| v.x, gx.neg()),
                     (|v| v.y, gy),

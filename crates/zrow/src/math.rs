@@ -26,8 +26,8 @@ impl<N: Scalar> Vec3<N> {
             N::from_f32(v[2])?,
         ))
     }
-    /// Difference.
-    pub fn sub(self, o: Self) -> Self {
+    /// Difference (saturating, like every operation here).
+    pub fn minus(self, o: Self) -> Self {
         Vec3::new(self.x.sub(o.x), self.y.sub(o.y), self.z.sub(o.z))
     }
     /// Dot product.
@@ -78,9 +78,9 @@ impl<N: Scalar> Affine<N> {
     /// From `f32` rows; `None` if an entry is not representable.
     pub fn from_f32(m: [[f32; 4]; 3]) -> Option<Self> {
         let mut out = Self::identity();
-        for r in 0..3 {
-            for c in 0..4 {
-                out.m[r][c] = N::from_f32(m[r][c])?;
+        for (dst, src) in out.m.iter_mut().zip(&m) {
+            for (d, s) in dst.iter_mut().zip(src) {
+                *d = N::from_f32(*s)?;
             }
         }
         Some(out)
@@ -88,9 +88,9 @@ impl<N: Scalar> Affine<N> {
     /// Rotation about the y axis then the x axis (angles in radians) and a translation,
     /// computed in `f32` (micromath) and converted.
     pub fn rotate_yx_translate(yaw: f32, pitch: f32, t: [f32; 3]) -> Option<Self> {
-        use micromath::F32Ext;
-        let (sy, cy) = (yaw.sin(), yaw.cos());
-        let (sp, cp) = (pitch.sin(), pitch.cos());
+        use micromath::F32Ext as M;
+        let (sy, cy) = (M::sin(yaw), M::cos(yaw));
+        let (sp, cp) = (M::sin(pitch), M::cos(pitch));
         // R = Rx(pitch) · Ry(yaw)
         Self::from_f32([
             [cy, 0.0, sy, t[0]],

@@ -102,8 +102,7 @@ impl<N: Scalar> Camera<N> {
 
     /// A perspective projection from a vertical field of view in radians.
     pub fn perspective(fov_y: f32, near: f32, far: f32) -> Option<Projection<N>> {
-        use micromath::F32Ext;
-        let focal = 1.0 / (fov_y * 0.5).tan();
+        let focal = 1.0 / micromath::F32Ext::tan(fov_y * 0.5);
         Some(Projection::Perspective {
             focal: N::from_f32(focal)?,
             near: N::from_f32(near)?,

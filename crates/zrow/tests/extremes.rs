@@ -210,7 +210,7 @@ fn watertight<N: Scalar>(centre: [f32; 2], radius: f32, seed: u64) {
             }
         }
     }
-    assert!(counts.iter().any(|&c| c == 1));
+    assert!(counts.contains(&1));
 }
 
 #[test]
