@@ -337,7 +337,9 @@ mod tests {
         let e = render_screen(&scene, 240, 8, Algo::Scanline, Format::Q16_16).unwrap_err();
         assert_eq!(
             e.to_string(),
-            format!("many.off: ActivePolygons capacity {HOST_ACTIVE} is too small: this scene needs {n}")
+            format!(
+                "many.off: active list holds {HOST_ACTIVE} but this scene needs {n}: raise that capacity"
+            )
         );
     }
 
