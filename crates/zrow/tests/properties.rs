@@ -113,3 +113,92 @@ fn dense_interpenetration_equals_reference() {
         check::<f32>(&p).unwrap();
     }
 }
+
+/// Any input at all: every Q16.16 bit pattern, every f32 (NaN, ±inf, subnormals, ±3e38),
+/// indices in and out of range, faces of 0..12 vertices, model or screen mode. The renderer
+/// returns a frame or a typed error; it never panics (these run in debug, where overflow
+/// would) and never sends a row after an error.
+mod no_panic {
+    use super::*;
+    use embedded_graphics_core::pixelcolor::Rgb565;
+    use zrow::{Affine, Camera, Face, Light, Mesh, ModelScene, Object, Projection, Vec3};
+
+    fn run<N: Scalar>(verts: Vec<Vec3<N>>, faces: Vec<Vec<u16>>, model: bool) {
+        let f: Vec<Face> = faces
+            .iter()
+            .map(|i| Face {
+                indices: i,
+                color: Rgb565::new(31, 0, 0),
+            })
+            .collect();
+        let mesh = Mesh {
+            vertices: &verts,
+            faces: &f,
+        };
+        let mut r = Box::new(zrow::Scanline::<N, 32, 64, 256, 64>::new());
+        let mut cap = Capture::<N>::new(32, 24);
+        let result = if model {
+            let objects = [Object {
+                mesh: &mesh,
+                transform: Affine::identity(),
+            }];
+            let cam = Camera::look_at(
+                [0.3, 0.2, 4.0],
+                [0.0; 3],
+                [0.0, 1.0, 0.0],
+                Projection::Perspective {
+                    focal: N::from_f32(1.5).unwrap(),
+                    near: N::from_f32(0.1).unwrap(),
+                    far: N::from_f32(50.0).unwrap(),
+                },
+            )
+            .unwrap();
+            let light = Light {
+                direction: verts.first().copied().unwrap_or_default(),
+                ambient: N::ZERO,
+            };
+            let scene = ModelScene {
+                objects: &objects,
+                camera: cam,
+                light,
+            };
+            r.render(&scene, &Config::model(32, 24), &mut cap)
+        } else {
+            let scene = zrow::ScreenScene { mesh };
+            r.render(&scene, &Config::screen(32, 24), &mut cap)
+        };
+        match result {
+            Ok(_) => assert_eq!(cap.rows_received, 24),
+            Err(_) => assert_eq!(cap.rows_received, 0),
+        }
+    }
+
+    fn faces() -> impl Strategy<Value = Vec<Vec<u16>>> {
+        prop::collection::vec(prop::collection::vec(0u16..10, 0..12), 0..10)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 400, ..ProptestConfig::default() })]
+
+        #[test]
+        fn any_q16_16_input(bits in prop::collection::vec(any::<[i32; 3]>(), 0..9), faces in faces(), model in any::<bool>()) {
+            let v = bits.iter().map(|b| Vec3::new(Q16_16::from_bits(b[0]), Q16_16::from_bits(b[1]), Q16_16::from_bits(b[2]))).collect();
+            run::<Q16_16>(v, faces, model);
+        }
+
+        #[test]
+        fn any_f32_input(bits in prop::collection::vec(any::<[u32; 3]>(), 0..9), faces in faces(), model in any::<bool>()) {
+            let v = bits.iter().map(|b| Vec3::new(f32::from_bits(b[0]), f32::from_bits(b[1]), f32::from_bits(b[2]))).collect();
+            run::<f32>(v, faces, model);
+        }
+
+        #[test]
+        fn small_coordinates_any_order(pts in prop::collection::vec(any::<[i16; 3]>(), 3..9), faces in faces(), model in any::<bool>()) {
+            // Plausible magnitudes (±128 px / units) so most faces reach the raster stage.
+            let v: Vec<Vec3<f32>> = pts.iter().map(|p| Vec3::new(p[0] as f32 / 256.0, p[1] as f32 / 256.0, p[2] as f32 / 256.0)).collect();
+            let q: Vec<Vec3<Q16_16>> = v.iter().map(|p| Vec3::from_f32([p.x, p.y, p.z]).unwrap()).collect();
+            run::<f32>(v, faces.clone(), model);
+            run::<Q16_16>(q, faces, model);
+        }
+    }
+}
