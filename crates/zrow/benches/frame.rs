@@ -8,7 +8,7 @@
 //! Before timing, each scene and format is rendered once to check that it draws (more than
 //! `MIN_DRAWN` non-background pixels) and to print one line of figures:
 //!
-//! `scene=NAME format=FMT tris=T polygons=P edges=E max_active=A coherent_spans=C per_pixel=X
+//! `scene=NAME format=FMT tris=T polygons=P edges=E max_active=A front_changes=C crossings=X
 //! ram_used=BYTES ram_struct=BYTES`
 //!
 //! `ram_used` is `zrow::scanline::ram_bytes` (tables at exactly the required sizes plus two
@@ -128,13 +128,13 @@ fn measure<N: Scalar>(
 
     println!(
         "scene={name} format={} tris={tris} polygons={} edges={} max_active={} \
-         coherent_spans={} per_pixel={} ram_used={} ram_struct={}",
+         front_changes={} crossings={} ram_used={} ram_struct={}",
         N::NAME,
         req.polygons,
         req.edges,
         req.active_polygons,
-        stats.coherent_spans,
-        stats.per_pixel,
+        stats.front_changes,
+        stats.crossings,
         ram_bytes::<N>(&req),
         Renderer::<N>::RAM_BYTES,
     );

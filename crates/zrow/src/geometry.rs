@@ -77,10 +77,8 @@ fn gather<N: Scalar>(mesh: &Mesh<'_, N>, face: &Face<'_>, no: u32) -> Result<Pol
                 face: no,
                 index: i as u32,
             })?;
-        for c in [v.x, v.y, v.z] {
-            if !c.to_f32().is_finite() {
-                return Err(Error::NonFinite { face: no });
-            }
+        if !(v.x.is_finite() && v.y.is_finite() && v.z.is_finite()) {
+            return Err(Error::NonFinite { face: no });
         }
         let _ = out.push(v); // fits: checked against MAX_FACE_VERTICES above
     }

@@ -61,6 +61,8 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     fn from_f32(v: f32) -> Option<Self>;
     /// Converts to `f32` (for reports and tests; rounding to nearest).
     fn to_f32(self) -> f32;
+    /// Whether the value is a number (always, for fixed point; not NaN or ±∞ for `f32`).
+    fn is_finite(self) -> bool;
     /// Saturating addition.
     fn add(self, o: Self) -> Self;
     /// Saturating subtraction.
@@ -148,6 +150,9 @@ impl Scalar for Q16_16 {
     }
     fn to_f32(self) -> f32 {
         self.to_num::<f32>()
+    }
+    fn is_finite(self) -> bool {
+        true
     }
     fn add(self, o: Self) -> Self {
         self.saturating_add(o)
@@ -253,6 +258,9 @@ impl Scalar for f32 {
     }
     fn to_f32(self) -> f32 {
         self
+    }
+    fn is_finite(self) -> bool {
+        f32::is_finite(self)
     }
     fn add(self, o: Self) -> Self {
         self + o

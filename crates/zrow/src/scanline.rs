@@ -33,6 +33,7 @@ use crate::requirements::Requirements;
 use crate::scene::Scene;
 use crate::sink::{Row, RowSink};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+use heapless::binary_heap::{BinaryHeap, Min};
 use heapless::Vec;
 
 const NONE: u16 = u16::MAX;
@@ -77,10 +78,10 @@ pub struct FrameStats {
     pub edges: u32,
     /// Most polygons active in one row.
     pub max_active: u32,
-    /// Pieces of rows decided from their ends (no per-pixel test).
-    pub coherent_spans: u32,
-    /// Pixels resolved one by one where polygons intersect.
-    pub per_pixel: u32,
+    /// Times a row's front polygon was sought among the open ones (a visible change).
+    pub front_changes: u32,
+    /// Of those, how many were at an intersection (the front overtaken mid-span).
+    pub crossings: u32,
 }
 
 /// The scan-line renderer.
@@ -96,7 +97,10 @@ pub struct Scanline<N, const W: usize, const P: usize, const E: usize, const A: 
     polygons: Vec<PolygonEntry<N>, P>,
     edges: Vec<Edge, E>,
     active: Vec<Active<N>, A>,
-    open: Vec<u16, A>,
+    /// Polygons covering the current piece of the row, by the column where their span ends.
+    open: BinaryHeap<(i32, u16), Min, A>,
+    /// Scratch for [`Self::max_active`]: last rows of the polygons counted so far.
+    last_rows: Vec<i16, A>,
     depth: [N; W],
     intensity: [Rgb565; W],
 }
@@ -125,7 +129,8 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
             polygons: Vec::new(),
             edges: Vec::new(),
             active: Vec::new(),
-            open: Vec::new(),
+            open: BinaryHeap::new(),
+            last_rows: Vec::new(),
             depth: [N::MAX; W],
             intensity: [Rgb565::BLACK; W],
         }
@@ -203,9 +208,9 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
         })
     }
 
-    /// Most polygons active in one row, checked against `A` (using the sweep's own scratch).
+    /// Most polygons active in one row, checked against `A`.
     fn max_active(&mut self) -> Result<u32, Error> {
-        self.open.clear();
+        self.last_rows.clear();
         let mut max = 0;
         for e in &self.edges {
             let p = &mut self.polygons[e.poly as usize];
@@ -213,16 +218,16 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
                 continue;
             }
             p.slot = 0; // seen
-            let (row, last) = (p.first_row, p.last_row as u16);
-            self.open.retain(|&l| l as i16 >= row);
-            if self.open.push(last).is_err() {
+            let (row, last) = (p.first_row, p.last_row);
+            self.last_rows.retain(|&l| l >= row);
+            if self.last_rows.push(last).is_err() {
                 return Err(Error::Capacity {
                     table: Table::ActivePolygons,
                     needed: self.max_active_exact(),
                     capacity: A as u32,
                 });
             }
-            max = max.max(self.open.len() as u32);
+            max = max.max(self.last_rows.len() as u32);
         }
         for p in self.polygons.iter_mut() {
             p.slot = NONE;
@@ -360,62 +365,73 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
         }
     }
 
-    /// Sweeps the row left to right, cutting it at every span end.
+    /// Sweeps the row left to right, filling it from a **front** polygon at a time.
+    ///
+    /// The seeds' cases 1 and 2 — a polygon in front at both ends of an overlap is in front
+    /// throughout, depths being linear in x — applied to whole overlaps: the front beats every
+    /// other open polygon from the current column up to `until`, the first column where one of
+    /// them wins (their crossing, case 3, found exactly by bisection: the sign of a linear
+    /// difference changes once). Until then the row is filled with no depth test. A polygon
+    /// that opens costs one check against the front (two depth evaluations, bisection only if
+    /// they cross); one that closes behind it costs nothing. The front is sought again among
+    /// the open polygons only when it closes, is overtaken at its crossing, or a newcomer is
+    /// in front of it — that is, where the visible surface changes.
+    ///
+    /// The open polygons sit in a min-heap on their span's end (retiring costs O(log n)).
     fn resolve_row(&mut self, width: usize, background: Rgb565, stats: &mut FrameStats) {
         let w = width as i32;
         let (active, open) = (&self.active, &mut self.open);
         open.clear();
         let (mut cur, mut k) = (0i32, 0usize);
+        // The front polygon and the first column where it may no longer be in front.
+        let mut front: Option<(usize, i32)> = None;
         loop {
             while k < active.len() && active[k].xl <= cur {
                 if active[k].xr > cur {
                     // Cannot fail: `open` has the active list's capacity.
-                    let _ = open.push(k as u16);
+                    let _ = open.push((active[k].xr, k as u16));
+                    if let Some((p, until)) = front {
+                        front = challenge(active, p, k, cur).map(|u| (p, until.min(u)));
+                    }
                 }
                 k += 1;
             }
-            let next_start = active.get(k).map_or(w, |a| a.xl.min(w));
-            let next_end = open
-                .iter()
-                .map(|&i| active[i as usize].xr)
-                .min()
-                .unwrap_or(w)
-                .min(w);
-            let next = next_start.min(next_end);
-            let (x0, x1) = (cur as usize, next as usize);
-            match open.len() {
-                0 => {
+            let next_start = active.get(k).map_or(w, |a| a.xl).min(w);
+            if front.is_none() && !open.is_empty() {
+                front = Some(establish(
+                    active,
+                    open.iter().map(|&(_, i)| i as usize),
+                    cur,
+                ));
+                stats.front_changes += 1;
+            }
+            let next = match front {
+                Some((p, until)) => {
+                    let next = next_start.min(active[p].xr).min(until).min(w);
+                    fill(&mut self.depth, &mut self.intensity, &active[p], cur, next);
+                    next
+                }
+                None => {
+                    let (x0, x1) = (cur as usize, next_start as usize);
                     self.intensity[x0..x1].fill(background);
                     self.depth[x0..x1].fill(N::MAX);
+                    next_start
                 }
-                1 => fill(
-                    &mut self.depth,
-                    &mut self.intensity,
-                    &active[open[0] as usize],
-                    x0,
-                    x1,
-                ),
-                _ => {
-                    let first = winner(active, open, cur);
-                    let last = winner(active, open, next - 1);
-                    if first == last {
-                        stats.coherent_spans += 1;
-                        fill(&mut self.depth, &mut self.intensity, &active[first], x0, x1);
-                    } else {
-                        stats.per_pixel += (x1 - x0) as u32;
-                        for x in x0..x1 {
-                            let a = &active[winner(active, open, x as i32)];
-                            self.depth[x] = depth_at(a, x as i32);
-                            self.intensity[x] = a.color;
-                        }
-                    }
-                }
-            }
+            };
             cur = next;
             if cur >= w {
                 break;
             }
-            open.retain(|&i| active[i as usize].xr > cur);
+            while let Some(&(_, i)) = open.peek().filter(|&&(xr, _)| xr <= cur) {
+                open.pop();
+                if front.is_some_and(|(p, _)| p == i as usize) {
+                    front = None;
+                }
+            }
+            if front.is_some_and(|(_, until)| until <= cur) {
+                stats.crossings += 1;
+                front = None;
+            }
         }
     }
 }
@@ -427,8 +443,9 @@ fn depth_at<N: Scalar>(a: &Active<N>, x: i32) -> N {
 
 /// Fills `x0..x1` with one polygon, stepping its depth one pixel at a time.
 #[inline]
-fn fill<N: Scalar>(depth: &mut [N], intensity: &mut [Rgb565], a: &Active<N>, x0: usize, x1: usize) {
-    let mut z = depth_at(a, x0 as i32);
+fn fill<N: Scalar>(depth: &mut [N], intensity: &mut [Rgb565], a: &Active<N>, x0: i32, x1: i32) {
+    let mut z = depth_at(a, x0);
+    let (x0, x1) = (x0 as usize, x1 as usize);
     for d in &mut depth[x0..x1] {
         *d = z;
         z = z.step(a.dzdx, 1);
@@ -436,20 +453,58 @@ fn fill<N: Scalar>(depth: &mut [N], intensity: &mut [Rgb565], a: &Active<N>, x0:
     intensity[x0..x1].fill(a.color);
 }
 
-/// The visible polygon at column `x`: least depth, then first in the scene.
+/// Whether polygon `p` is visible over `q` at column `x`: nearer, or as near and first.
 #[inline]
-fn winner<N: Scalar>(active: &[Active<N>], open: &[u16], x: i32) -> usize {
-    let mut best = open[0] as usize;
-    let mut bz = depth_at(&active[best], x);
-    for &i in &open[1..] {
-        let i = i as usize;
-        let z = depth_at(&active[i], x);
-        if z < bz || (z == bz && active[i].poly < active[best].poly) {
-            best = i;
-            bz = z;
+fn beats<N: Scalar>(active: &[Active<N>], p: usize, q: usize, x: i32) -> bool {
+    let (zp, zq) = (depth_at(&active[p], x), depth_at(&active[q], x));
+    zp < zq || (zp == zq && active[p].poly < active[q].poly)
+}
+
+/// How long front `p` holds against `q` from column `x` on: `None` if `q` is in front at `x`,
+/// else the first column where `q` wins within the stretch both cover (`i32::MAX` if none).
+/// Depths are linear in x, so `p − q` changes sign at most once: check the stretch's far end,
+/// then bisect (in Q16.16 exactly: the steps are exact integer arithmetic).
+fn challenge<N: Scalar>(active: &[Active<N>], p: usize, q: usize, x: i32) -> Option<i32> {
+    if !beats(active, p, q, x) {
+        return None;
+    }
+    let mut hi = active[p].xr.min(active[q].xr) - 1;
+    if beats(active, p, q, hi) {
+        return Some(i32::MAX);
+    }
+    let mut lo = x; // p wins at lo, q at hi
+    while hi - lo > 1 {
+        let mid = lo + (hi - lo) / 2;
+        if beats(active, p, q, mid) {
+            lo = mid;
+        } else {
+            hi = mid;
         }
     }
-    best
+    Some(hi)
+}
+
+/// The polygon in front at `x` among `open` (not empty), and the first column where another
+/// open polygon overtakes it.
+fn establish<N: Scalar>(
+    active: &[Active<N>],
+    open: impl Iterator<Item = usize> + Clone,
+    x: i32,
+) -> (usize, i32) {
+    let p = winner(active, open.clone(), x);
+    let until = open
+        .filter(|&q| q != p)
+        .filter_map(|q| challenge(active, p, q, x))
+        .min()
+        .unwrap_or(i32::MAX);
+    (p, until)
+}
+
+/// The visible polygon at column `x` among `open` (not empty): least depth, then first in the
+/// scene.
+fn winner<N: Scalar>(active: &[Active<N>], mut open: impl Iterator<Item = usize>, x: i32) -> usize {
+    let first = open.next().unwrap_or(0);
+    open.fold(first, |b, i| if beats(active, i, b, x) { i } else { b })
 }
 
 /// RAM the scan-line renderer needs for a scene with these requirements, in bytes: its tables
@@ -458,6 +513,7 @@ pub fn ram_bytes<N: Scalar>(req: &Requirements) -> usize {
     use core::mem::size_of;
     req.polygons as usize * size_of::<PolygonEntry<N>>()
         + req.edges as usize * size_of::<Edge>()
-        + req.active_polygons as usize * (size_of::<Active<N>>() + size_of::<u16>())
+        + req.active_polygons as usize
+            * (size_of::<Active<N>>() + size_of::<(i32, u16)>() + size_of::<i16>())
         + req.width as usize * (size_of::<N>() + size_of::<Rgb565>())
 }
