@@ -55,12 +55,13 @@ impl Algo {
 
     /// The accepted names, comma-separated (for messages).
     pub fn names() -> String {
-        Self::ALL
-            .iter()
-            .map(|(n, _)| *n)
-            .collect::<Vec<_>>()
-            .join(", ")
+        join_names(Self::ALL)
     }
+}
+
+/// The names of a name table, comma-separated.
+fn join_names<T>(all: &[(&str, T)]) -> String {
+    all.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
 }
 
 /// The number format the renderer computes in, by its `--format` name.
@@ -93,11 +94,7 @@ impl Format {
 
     /// The accepted names, comma-separated (for messages).
     pub fn names() -> String {
-        Self::ALL
-            .iter()
-            .map(|(n, _)| *n)
-            .collect::<Vec<_>>()
-            .join(", ")
+        join_names(Self::ALL)
     }
 }
 
@@ -230,13 +227,12 @@ fn scanline<N: Scalar + Send + Sync>(
     width: u16,
     height: u16,
 ) -> Result<Image, SimError> {
+    let req = measure::<N>(scene, width, height)?;
+    check_capacity(&req).map_err(|e| core_error(scene, e))?;
     let vertices = scene.vertices_in::<N>()?;
     let faces = faces(scene);
     let screen = screen_scene(&vertices, &faces);
     let cfg = Config::screen(width, height);
-    let mut rows = vec![0u32; height as usize + 1];
-    let req = zrow::requirements(&screen, &cfg, &mut rows).map_err(|e| core_error(scene, e))?;
-    check_capacity(&req).map_err(|e| core_error(scene, e))?;
 
     let mut pixels = vec![Rgb565::BLACK; width as usize * height as usize];
     let mut frame = FrameBuffer::new(&mut pixels, width as usize);

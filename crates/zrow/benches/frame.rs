@@ -23,20 +23,14 @@ use criterion::{
     criterion_group, criterion_main, BenchmarkGroup, BenchmarkId, Criterion, SamplingMode,
 };
 use embedded_graphics_core::pixelcolor::{IntoStorage, Rgb565};
-use scenes::MeshData;
 use std::convert::Infallible;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 use zrow::scanline::ram_bytes;
-use zrow::{
-    requirements, Config, Mesh, ModelScene, Object, Row, RowSink, Scalar, Scanline, Scene,
-    ScreenScene, Q16_16,
-};
+use zrow::{requirements, Config, Row, RowSink, Scalar, Scanline, Scene, Q16_16};
 
-const WIDTH: u16 = 240;
-const HEIGHT: u16 = 240;
 /// Renderer capacities: row width, polygon table, edge table, active list.
-const W: usize = WIDTH as usize;
+const W: usize = 240;
 const P: usize = 2048;
 const E: usize = 6144;
 const A: usize = 512;
@@ -92,7 +86,7 @@ fn measure<N: Scalar>(
     group: &mut BenchmarkGroup<'_, WallTime>,
     name: &str,
     tris: usize,
-    scene: &impl Scene<N>,
+    scene: &dyn Scene<N>,
     cfg: &Config,
 ) {
     let mut scratch = vec![0u32; cfg.height as usize + 1];
@@ -154,58 +148,12 @@ fn measure<N: Scalar>(
     black_box(sink.acc);
 }
 
-/// One mesh, one object, in model mode with the benchmark camera and light.
-fn model<N: Scalar>(group: &mut BenchmarkGroup<'_, WallTime>, name: &str, data: &MeshData<N>) {
-    let faces = data.faces();
-    let mesh = Mesh {
-        vertices: &data.vertices,
-        faces: &faces,
-    };
-    let objects = [Object {
-        mesh: &mesh,
-        transform: scenes::tilt(),
-    }];
-    let scene = ModelScene {
-        objects: &objects,
-        camera: scenes::camera(),
-        light: scenes::light(),
-    };
-    measure(
-        group,
-        name,
-        faces.len(),
-        &scene,
-        &Config::model(WIDTH, HEIGHT),
-    );
-}
-
-/// A screen-space mesh.
-fn screen<N: Scalar>(group: &mut BenchmarkGroup<'_, WallTime>, name: &str, data: &MeshData<N>) {
-    let faces = data.faces();
-    let scene = ScreenScene {
-        mesh: Mesh {
-            vertices: &data.vertices,
-            faces: &faces,
-        },
-    };
-    measure(
-        group,
-        name,
-        faces.len(),
-        &scene,
-        &Config::screen(WIDTH, HEIGHT),
-    );
-}
-
 fn scenes_in<N: Scalar>(group: &mut BenchmarkGroup<'_, WallTime>) {
-    model(group, "cube", &scenes::cube::<N>());
-    model(group, "mesh1k", &scenes::torus::<N>(25, 20, 1.0, 0.4));
-    let (w, h) = (f32::from(WIDTH), f32::from(HEIGHT));
-    screen(
-        group,
-        "random400",
-        &scenes::random_triangles::<N>(400, w, h, 100.0, 0x2545_f491),
-    );
+    for name in scenes::NAMES {
+        scenes::with_scene::<N, _>(name, |scene, cfg, tris| {
+            measure(group, name, tris, scene, cfg)
+        });
+    }
 }
 
 fn frame(c: &mut Criterion) {

@@ -6,7 +6,9 @@
 
 use embedded_graphics_core::pixelcolor::raw::RawU16;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-use zrow::{Affine, Camera, Face, Light, Scalar, Vec3};
+use zrow::{
+    Affine, Camera, Config, Face, Light, Mesh, ModelScene, Object, Scalar, Scene, ScreenScene, Vec3,
+};
 
 /// Owned mesh data in format `N`; [`MeshData::faces`] borrows it as `zrow` faces.
 pub struct MeshData<N> {
@@ -205,3 +207,43 @@ pub fn light<N: Scalar>() -> Light<N> {
 pub fn tilt<N: Scalar>() -> Affine<N> {
     Affine::rotate_yx_translate(0.35, 0.2, [0.0; 3]).expect("transform fits format")
 }
+
+/// The standard scenes by name: `cube`, `mesh1k` (model mode, benchmark camera and light) and
+/// `random400` (screen space), each at 240×240. Calls `f` with the scene, its configuration
+/// and its face count; `None` for an unknown name.
+pub fn with_scene<N: Scalar, R>(
+    name: &str,
+    f: impl FnOnce(&dyn Scene<N>, &Config, usize) -> R,
+) -> Option<R> {
+    let data = match name {
+        "cube" => cube::<N>(),
+        "mesh1k" => torus::<N>(25, 20, 1.0, 0.4),
+        "random400" => random_triangles::<N>(400, 240.0, 240.0, 100.0, 0x2545_f491),
+        _ => return None,
+    };
+    let faces = data.faces();
+    let mesh = Mesh {
+        vertices: &data.vertices,
+        faces: &faces,
+    };
+    if name == "random400" {
+        return Some(f(
+            &ScreenScene { mesh },
+            &Config::screen(240, 240),
+            faces.len(),
+        ));
+    }
+    let objects = [Object {
+        mesh: &mesh,
+        transform: tilt(),
+    }];
+    let scene = ModelScene {
+        objects: &objects,
+        camera: camera(),
+        light: light(),
+    };
+    Some(f(&scene, &Config::model(240, 240), faces.len()))
+}
+
+/// The standard scenes' names, in report order.
+pub const NAMES: [&str; 3] = ["cube", "mesh1k", "random400"];

@@ -13,9 +13,7 @@
 mod scenes;
 
 use std::hint::black_box;
-use zrow::{
-    Config, Mesh, ModelScene, Object, Row, RowSink, Scalar, Scanline, Scene, ScreenScene, Q16_16,
-};
+use zrow::{Row, RowSink, Scalar, Scanline, Q16_16};
 
 struct Sink(u32);
 impl<N> RowSink<N> for Sink {
@@ -26,44 +24,19 @@ impl<N> RowSink<N> for Sink {
     }
 }
 
-fn run<N: Scalar>(scene: &impl Scene<N>, cfg: &Config, frames: usize) {
+fn run<N: Scalar>(name: &str, frames: usize) {
     let mut r = Box::new(Scanline::<N, 240, 2048, 6144, 512>::new());
     let mut sink = Sink(0);
-    for k in 0..frames {
-        let stats = r.render(scene, cfg, &mut sink).expect("render");
-        if k == 0 {
-            println!("{stats:?}");
+    scenes::with_scene::<N, _>(name, |scene, cfg, _| {
+        for k in 0..frames {
+            let stats = r.render(scene, cfg, &mut sink).expect("render");
+            if k == 0 {
+                println!("{stats:?}");
+            }
         }
-    }
+    })
+    .unwrap_or_else(|| panic!("unknown scene {name}: {}", scenes::NAMES.join(", ")));
     black_box(sink.0);
-}
-
-fn scene_in<N: Scalar>(name: &str, frames: usize) {
-    let data = match name {
-        "cube" => scenes::cube::<N>(),
-        "mesh1k" => scenes::torus::<N>(25, 20, 1.0, 0.4),
-        "random400" => scenes::random_triangles::<N>(400, 240.0, 240.0, 100.0, 0x2545_f491),
-        _ => panic!("scenes: cube, mesh1k, random400"),
-    };
-    let faces = data.faces();
-    let mesh = Mesh {
-        vertices: &data.vertices,
-        faces: &faces,
-    };
-    if name == "random400" {
-        run(&ScreenScene { mesh }, &Config::screen(240, 240), frames);
-    } else {
-        let objects = [Object {
-            mesh: &mesh,
-            transform: scenes::tilt(),
-        }];
-        let scene = ModelScene {
-            objects: &objects,
-            camera: scenes::camera(),
-            light: scenes::light(),
-        };
-        run(&scene, &Config::model(240, 240), frames);
-    }
 }
 
 fn main() {
@@ -71,7 +44,7 @@ fn main() {
     let name = args.get(1).map_or("mesh1k", |s| s.as_str());
     let frames = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(10);
     match args.get(2).map_or("q16.16", |s| s.as_str()) {
-        "f32" => scene_in::<f32>(name, frames),
-        _ => scene_in::<Q16_16>(name, frames),
+        "f32" => run::<f32>(name, frames),
+        _ => run::<Q16_16>(name, frames),
     }
 }

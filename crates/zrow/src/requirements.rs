@@ -52,7 +52,7 @@ impl Requirements {
 /// assert_eq!((req.polygons, req.edges, req.active_polygons), (1, 2, 1));
 /// ```
 pub fn requirements<N: Scalar>(
-    scene: &impl Scene<N>,
+    scene: &(impl Scene<N> + ?Sized),
     cfg: &Config,
     rows: &mut [u32],
 ) -> Result<Requirements, Error> {

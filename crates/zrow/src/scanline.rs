@@ -142,7 +142,7 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
     /// are returned before the first row is sent.
     pub fn render<K: RowSink<N>>(
         &mut self,
-        scene: &impl Scene<N>,
+        scene: &(impl Scene<N> + ?Sized),
         cfg: &Config,
         sink: &mut K,
     ) -> Result<FrameStats, RenderError<K::Error>> {
@@ -153,7 +153,11 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
     }
 
     /// Builds the polygon and edge tables and checks the active-list capacity.
-    fn prepare(&mut self, scene: &impl Scene<N>, cfg: &Config) -> Result<FrameStats, Error> {
+    fn prepare(
+        &mut self,
+        scene: &(impl Scene<N> + ?Sized),
+        cfg: &Config,
+    ) -> Result<FrameStats, Error> {
         cfg.validate(W)?;
         self.polygons.clear();
         self.edges.clear();
@@ -398,11 +402,11 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
             }
             let next_start = active.get(k).map_or(w, |a| a.xl).min(w);
             if front.is_none() && !open.is_empty() {
-                front = Some(establish(
-                    active,
-                    open.iter().map(|&(_, i)| i as usize),
-                    cur,
-                ));
+                front = Some(match open.len() {
+                    // Alone: in front until it closes (the common case on a mesh).
+                    1 => (open.peek().map_or(0, |&(_, i)| i as usize), i32::MAX),
+                    _ => establish(active, open.iter().map(|&(_, i)| i as usize), cur),
+                });
                 stats.front_changes += 1;
             }
             let next = match front {

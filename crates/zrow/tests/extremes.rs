@@ -5,8 +5,8 @@ mod common;
 use common::*;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use zrow::{
-    Affine, Camera, Config, Error, Face, Light, Mesh, ModelScene, Object, RenderError, Scalar,
-    Scanline, ScreenScene, Table, Vec3, Q16_16,
+    Camera, Config, Error, Face, Mesh, RenderError, Scalar, Scanline, ScreenScene, Table, Vec3,
+    Q16_16,
 };
 
 /// Per-pixel count of how many of `polys`, each drawn alone, cover it.
@@ -528,14 +528,6 @@ fn near_plane_scene<N: Scalar>(tri: [[f32; 3]; 3]) -> Capture<N> {
         indices: &[0, 1, 2],
         color: Rgb565::WHITE,
     }];
-    let mesh = Mesh {
-        vertices: &verts,
-        faces: &faces,
-    };
-    let objects = [Object {
-        mesh: &mesh,
-        transform: Affine::identity(),
-    }];
     let camera = Camera::look_at(
         [0.0, 0.0, 0.0],
         [0.0, 0.0, -1.0],
@@ -543,20 +535,9 @@ fn near_plane_scene<N: Scalar>(tri: [[f32; 3]; 3]) -> Capture<N> {
         Camera::<N>::perspective(1.5, 0.1, 100.0).unwrap(),
     )
     .unwrap();
-    let scene = ModelScene {
-        objects: &objects,
-        camera,
-        light: Light {
-            direction: Vec3::from_f32([0.0, 0.0, 1.0]).unwrap(),
-            ambient: N::ONE,
-        },
-    };
     let mut cfg = Config::model(48, 48);
     cfg.cull = zrow::Cull::None;
-    let mut r = Box::new(Big::<N>::new());
-    let mut cap = Capture::new(48, 48);
-    r.render(&scene, &cfg, &mut cap).unwrap();
-    cap
+    render_model(&verts, &faces, camera, &cfg)
 }
 
 // 14. Near plane: 1, 2 or 3 vertices behind the eye, and w → 0⁺: only w > 0 drawn, no NaN.

@@ -3,10 +3,7 @@
 mod common;
 use common::*;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-use zrow::{
-    backface::is_back_face, Affine, Camera, Config, Face, Light, Mesh, ModelScene, Object,
-    Projection, Scalar, Vec3, Q16_16,
-};
+use zrow::{backface::is_back_face, Camera, Config, Face, Projection, Scalar, Vec3, Q16_16};
 
 /// Seed 002: s1 = (0,0,6),(6,0,0),(0,6,0), s2 = (2,0,6),(6,0,6),(4,4,0); at (3, 1) s1 is
 /// visible with depth 2. Our samples are at pixel centres, so the scene moves by half a pixel
@@ -97,6 +94,33 @@ fn cube_vertices<N: Scalar>() -> Vec<Vec3<N>> {
         .collect()
 }
 
+/// Renders the unit cube, each face in its own unshaded colour (full ambient), and returns the
+/// pixel count of each face.
+fn render_cube<N: Scalar>(camera: Camera<N>, size: u16) -> [usize; 6] {
+    let verts = cube_vertices::<N>();
+    let faces: Vec<Face> = CUBE_FACES
+        .iter()
+        .enumerate()
+        .map(|(i, (idx, _))| Face {
+            indices: idx,
+            color: color_of(i),
+        })
+        .collect();
+    let cap = render_model(&verts, &faces, camera, &Config::model(size, size));
+    let mut seen = [0usize; 6];
+    for c in &cap.color {
+        if let Some(i) = index_of(*c) {
+            seen[i] += 1;
+        }
+    }
+    assert_eq!(
+        seen.iter().sum::<usize>(),
+        cap.drawn(),
+        "only face colours drawn"
+    );
+    seen
+}
+
 /// Seed 004: the unit cube at the origin seen from (5, −1, 5): faces +x, −y and +z are
 /// visible, the other three are back faces.
 fn cube_from_5_m1_5<N: Scalar>() {
@@ -118,23 +142,6 @@ fn cube_from_5_m1_5<N: Scalar>() {
         );
     }
     // And rendered through the whole pipeline, each face in its own colour.
-    let verts = cube_vertices::<N>();
-    let faces: Vec<Face> = CUBE_FACES
-        .iter()
-        .enumerate()
-        .map(|(i, (idx, _))| Face {
-            indices: idx,
-            color: color_of(i),
-        })
-        .collect();
-    let mesh = Mesh {
-        vertices: &verts,
-        faces: &faces,
-    };
-    let objects = [Object {
-        mesh: &mesh,
-        transform: Affine::identity(),
-    }];
     let camera = Camera::look_at(
         [5.0, -1.0, 5.0],
         [0.0, 0.0, 0.0],
@@ -142,26 +149,7 @@ fn cube_from_5_m1_5<N: Scalar>() {
         Camera::<N>::perspective(0.6, 0.1, 50.0).unwrap(),
     )
     .unwrap();
-    // Full ambient, so colours come out unshaded and name their face.
-    let light = Light {
-        direction: Vec3::from_f32([0.0, 1.0, 0.0]).unwrap(),
-        ambient: N::ONE,
-    };
-    let scene = ModelScene {
-        objects: &objects,
-        camera,
-        light,
-    };
-    let cfg = Config::model(96, 96);
-    let mut r = Box::new(Big::<N>::new());
-    let mut cap = Capture::<N>::new(96, 96);
-    r.render(&scene, &cfg, &mut cap).unwrap();
-    let mut seen = [0usize; 6];
-    for c in &cap.color {
-        if let Some(i) = index_of(*c) {
-            seen[i] += 1;
-        }
-    }
+    let seen = render_cube(camera, 96);
     let visible: Vec<&str> = (0..6)
         .filter(|&i| seen[i] > 0)
         .map(|i| CUBE_FACES[i].1)
@@ -188,23 +176,6 @@ fn seed004_cube_from_20_40_20() {
 /// Orthographic projection gives the seeds' "back face if C < 0" along the view axis.
 #[test]
 fn orthographic_cube_shows_one_face_head_on() {
-    let verts = cube_vertices::<f32>();
-    let faces: Vec<Face> = CUBE_FACES
-        .iter()
-        .enumerate()
-        .map(|(i, (idx, _))| Face {
-            indices: idx,
-            color: color_of(i),
-        })
-        .collect();
-    let mesh = Mesh {
-        vertices: &verts,
-        faces: &faces,
-    };
-    let objects = [Object {
-        mesh: &mesh,
-        transform: Affine::identity(),
-    }];
     let camera = Camera::look_at(
         [0.5, 0.5, 5.0],
         [0.5, 0.5, 0.0],
@@ -216,23 +187,7 @@ fn orthographic_cube_shows_one_face_head_on() {
         },
     )
     .unwrap();
-    let scene = ModelScene {
-        objects: &objects,
-        camera,
-        light: Light {
-            direction: Vec3::new(0.0, 0.0, 1.0),
-            ambient: 1.0,
-        },
-    };
-    let mut r = Box::new(Big::<f32>::new());
-    let mut cap = Capture::<f32>::new(64, 64);
-    r.render(&scene, &Config::model(64, 64), &mut cap).unwrap();
+    let seen = render_cube::<f32>(camera, 64);
     // Only +z faces the viewer: a 32x32 square (half_height 1 → 32 px per unit).
-    let plus_z = cap
-        .color
-        .iter()
-        .filter(|&&c| index_of(c) == Some(4))
-        .count();
-    assert_eq!(plus_z, 32 * 32);
-    assert_eq!(cap.drawn(), 32 * 32);
+    assert_eq!(seen, [0, 0, 0, 0, 32 * 32, 0]);
 }

@@ -3,7 +3,10 @@
 #![allow(dead_code)]
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-use zrow::{Config, Face, Mesh, Row, RowSink, Scalar, Scanline, ScreenScene, Vec3};
+use zrow::{
+    Affine, Camera, Config, Face, Light, Mesh, ModelScene, Object, Row, RowSink, Scalar, Scanline,
+    ScreenScene, Vec3,
+};
 
 /// Host capacities big enough for every test scene.
 pub type Big<N> = Scanline<N, 256, 4096, 16384, 1024>;
@@ -279,4 +282,32 @@ impl Rng {
     pub fn below(&mut self, n: u64) -> u64 {
         self.next() % n
     }
+}
+
+/// Renders one mesh in model mode at the origin with full ambient light, so every face keeps
+/// its own colour unshaded.
+pub fn render_model<N: Scalar>(
+    vertices: &[Vec3<N>],
+    faces: &[Face],
+    camera: Camera<N>,
+    cfg: &Config,
+) -> Capture<N> {
+    let mesh = Mesh { vertices, faces };
+    let objects = [Object {
+        mesh: &mesh,
+        transform: Affine::identity(),
+    }];
+    let light = Light {
+        direction: Vec3::from_f32([0.0, 1.0, 0.0]).unwrap(),
+        ambient: N::ONE,
+    };
+    let scene = ModelScene {
+        objects: &objects,
+        camera,
+        light,
+    };
+    let mut r = Box::new(Big::<N>::new());
+    let mut cap = Capture::new(cfg.width as usize, cfg.height as usize);
+    r.render(&scene, cfg, &mut cap).unwrap();
+    cap
 }
