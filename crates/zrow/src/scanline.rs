@@ -14,15 +14,18 @@
 //!   and right edge stepped exactly (`x += 1/m`, see [`crate::raster::Dda`]) and its depth at
 //!   its left end, stepped down the edge by `dzdy + dzdx·Δx` — the seeds' `(A/m + B)/C` with the
 //!   pixel steps the edge actually takes, so it equals the plane at every pixel centre;
-//! - **span coherence** (seed 000, the three cases): the row is cut at every span end into
-//!   pieces where the same polygons are present. Where one polygon wins at both ends of a piece
-//!   it wins throughout (depths are linear in x, so their differences cannot change sign in
-//!   between) and the piece is filled with no depth test; only where the winners differ — the
-//!   polygons intersect (case 3) — is the piece resolved pixel by pixel.
+//! - **span coherence** (seed 000, the three cases): where one polygon is in front at both
+//!   ends of its overlap with another it is in front throughout (depths are linear in x, so
+//!   their difference cannot change sign in between). The row is filled from a *front*
+//!   polygon with no per-pixel depth test up to the first column where another open polygon
+//!   overtakes it — their intersection (case 3), found exactly by bisection — or it closes, or
+//!   a newcomer opens in front of it. Work follows the visible changes along the row, not the
+//!   pixels and not the polygons hidden behind the front.
 //!
 //! Ties go to the polygon that comes first in the scene (GUIDE §1): the winner is the least
 //! `(depth, scene order)`. In Q16.16 depths step by wrapping integer additions, which equal the
-//! direct plane evaluation bit for bit, so the span decision equals the per-pixel test exactly.
+//! direct plane evaluation bit for bit, so every span decision equals the per-pixel test
+//! exactly (the property tests check this against an exact reference).
 //!
 //! Every capacity is checked while the tables are built, before the first row is sent.
 
