@@ -22,7 +22,7 @@ pub enum Table {
 #[non_exhaustive]
 pub enum Error {
     /// The scene needs more room in `table` than the renderer has: build it with a capacity of
-    /// at least `needed` (see [`crate::requirements`]).
+    /// at least `needed` (see [`crate::requirements()`]).
     Capacity {
         /// Which table.
         table: Table,

@@ -4,7 +4,7 @@
 //!   object; the seeds' normal-versus-view test drops back faces ([`crate::backface`]); the face
 //!   is flat (Lambert) shaded from the directional light; the polygon is clipped in clip space
 //!   against the near and far planes (so only w ≥ near > 0 is ever divided by) and a guard band
-//!   ([`GUARD_BAND`] pixels round the viewport), then divided and snapped. Depth is
+//!   ([`GUARD_BAND`](crate::raster::GUARD_BAND) pixels round the viewport), then divided and snapped. Depth is
 //!   `DEPTH_RANGE · (1 − near/w) · far/(far − near)` under perspective (affine in 1/w, hence
 //!   linear in screen space, 0 at the near plane and `DEPTH_RANGE` at the far plane) and linear
 //!   in w under an orthographic camera.

@@ -54,7 +54,7 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     const ZERO: Self;
     /// One.
     const ONE: Self;
-    /// The largest value; a depth row is cleared to it ("depth[x] = 1.0 (max value)").
+    /// The largest value; a depth row is cleared to it (the seeds' "`depth[x]` = 1.0 (max value)").
     const MAX: Self;
 
     /// Converts from `f32`; `None` for NaN, infinity or a value outside the format's range.

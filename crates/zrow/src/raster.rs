@@ -11,12 +11,12 @@
 //!   edge does not): the top-left rule, so polygons sharing an edge never both cover, and never
 //!   both miss, a sample on it;
 //! - an edge's crossing moves by 1/m per row (the seeds' `x' = x + 1/m`), kept exactly as an
-//!   integer quotient and remainder ([`Dda`]), so no error accumulates down the edge.
+//!   integer quotient and remainder ([`Dda`](crate::raster::Dda)), so no error accumulates down the edge.
 //!
 //! Zero area after snapping counts as back-facing and is dropped.
 //!
-//! Bit budget: geometry clips to a guard band of [`GUARD_BAND`] pixels around the viewport and
-//! viewports are at most [`MAX_VIEWPORT`] pixels a side, so coordinates stay below 2^13 pixels;
+//! Bit budget: geometry clips to a guard band of [`GUARD_BAND`](crate::raster::GUARD_BAND) pixels around the viewport and
+//! viewports are at most [`MAX_VIEWPORT`](crate::raster::MAX_VIEWPORT) pixels a side, so coordinates stay below 2^13 pixels;
 //! with at most 8 sub-pixel bits the per-row walk fits `i32` and setup uses `i64`.
 
 use crate::error::Error;

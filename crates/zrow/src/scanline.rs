@@ -94,7 +94,7 @@ pub struct FrameStats {
 /// - `P`: polygon-table capacity; `E`: edge-table capacity; `A`: active-list capacity
 ///   (polygons in one row).
 ///
-/// Choose the capacities with [`crate::requirements`]. All memory is in the struct:
+/// Choose the capacities with [`crate::requirements()`]. All memory is in the struct:
 /// [`Scanline::RAM_BYTES`] is the whole of it.
 pub struct Scanline<N, const W: usize, const P: usize, const E: usize, const A: usize> {
     polygons: Vec<PolygonEntry<N>, P>,
