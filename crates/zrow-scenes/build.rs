@@ -1,0 +1,187 @@
+//! Generates the standard meshes as const Rust data (`$OUT_DIR/meshes.rs`), once, on the
+//! build host: positions in both number formats (f32 and Q16.16 bits, rounded to nearest),
+//! faces as static index slices with colours. Every generated face is checked to be
+//! counter-clockwise seen from outside (the culling convention).
+
+use std::fmt::Write as _;
+
+type V = [f32; 3];
+
+fn sub(a: V, b: V) -> V {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn cross(a: V, b: V) -> V {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+fn dot(a: V, b: V) -> f32 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+struct MeshGen {
+    vertices: Vec<V>,
+    faces: Vec<(Vec<u16>, (u8, u8, u8))>,
+}
+
+impl MeshGen {
+    /// Checks that each face's normal points away from `inside(centroid)`.
+    fn assert_outward(&self, inside: impl Fn(V) -> V) {
+        for (no, (idx, _)) in self.faces.iter().enumerate() {
+            let p = |k: usize| self.vertices[idx[k] as usize];
+            let normal = cross(sub(p(1), p(0)), sub(p(2), p(0)));
+            let mut c = [0.0f32; 3];
+            for &i in idx {
+                for (ck, vk) in c.iter_mut().zip(self.vertices[i as usize]) {
+                    *ck += vk / idx.len() as f32;
+                }
+            }
+            assert!(
+                dot(normal, sub(c, inside(c))) > 0.0,
+                "face {no} is not outward"
+            );
+        }
+    }
+
+    fn emit(&self, out: &mut String, name: &str) {
+        let n = self.vertices.len();
+        writeln!(out, "pub(crate) static {name}_F32: [Vec3<f32>; {n}] = [").unwrap();
+        for v in &self.vertices {
+            writeln!(
+                out,
+                "    Vec3::new({:?}f32, {:?}f32, {:?}f32),",
+                v[0], v[1], v[2]
+            )
+            .unwrap();
+        }
+        writeln!(out, "];").unwrap();
+        writeln!(
+            out,
+            "/// 16.16 fixed point, rounded to nearest from the f32 positions."
+        )
+        .unwrap();
+        writeln!(
+            out,
+            "pub(crate) static {name}_Q16_16: [Vec3<Q16_16>; {n}] = ["
+        )
+        .unwrap();
+        let q = |x: f32| ((x as f64) * 65536.0).round() as i32;
+        for v in &self.vertices {
+            writeln!(
+                out,
+                "    Vec3::new(Q16_16::from_bits({}), Q16_16::from_bits({}), Q16_16::from_bits({})),",
+                q(v[0]),
+                q(v[1]),
+                q(v[2])
+            )
+            .unwrap();
+        }
+        writeln!(out, "];").unwrap();
+        let f = self.faces.len();
+        writeln!(
+            out,
+            "pub(crate) static {name}_FACES: [Face<'static>; {f}] = ["
+        )
+        .unwrap();
+        for (idx, (r, g, b)) in &self.faces {
+            writeln!(
+                out,
+                "    Face {{ indices: &{idx:?}, color: Rgb565::new({r}, {g}, {b}) }},"
+            )
+            .unwrap();
+        }
+        writeln!(out, "];").unwrap();
+    }
+}
+
+/// The unit cube centred on the origin: 6 quads, one colour each (Rgb565 channel values).
+fn cube() -> MeshGen {
+    let vertices = (0..8)
+        .map(|i: u32| {
+            let c = |bit: u32| ((i >> bit) & 1) as f32 - 0.5;
+            [c(0), c(1), c(2)]
+        })
+        .collect();
+    let quads: [([u16; 4], (u8, u8, u8)); 6] = [
+        ([1, 3, 7, 5], (31, 0, 0)),  // +x red
+        ([0, 4, 6, 2], (0, 63, 31)), // -x cyan
+        ([2, 6, 7, 3], (0, 63, 0)),  // +y green
+        ([0, 1, 5, 4], (31, 0, 31)), // -y magenta
+        ([4, 5, 7, 6], (0, 0, 31)),  // +z blue
+        ([0, 2, 3, 1], (31, 63, 0)), // -z yellow
+    ];
+    let m = MeshGen {
+        vertices,
+        faces: quads.iter().map(|(q, c)| (q.to_vec(), *c)).collect(),
+    };
+    m.assert_outward(|_| [0.0; 3]);
+    m
+}
+
+/// A closed torus about the y axis, `ring` × `tube` quads as two triangles each.
+fn torus(ring: usize, tube: usize, major: f32, minor: f32) -> MeshGen {
+    use std::f32::consts::TAU;
+    let mut vertices = Vec::with_capacity(ring * tube);
+    for i in 0..ring {
+        let u = TAU * i as f32 / ring as f32;
+        for j in 0..tube {
+            let v = TAU * j as f32 / tube as f32;
+            let r = major + minor * v.cos();
+            vertices.push([r * u.cos(), minor * v.sin(), r * u.sin()]);
+        }
+    }
+    let palette = [(31, 40, 8), (8, 48, 28), (24, 24, 31)];
+    let at = |i: usize, j: usize| ((i % ring) * tube + j % tube) as u16;
+    let mut faces = Vec::with_capacity(2 * ring * tube);
+    for i in 0..ring {
+        for j in 0..tube {
+            let (a, b, c, d) = (at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j));
+            let color = palette[(i + j) % palette.len()];
+            faces.push((vec![a, b, c], color));
+            faces.push((vec![a, c, d], color));
+        }
+    }
+    let m = MeshGen { vertices, faces };
+    m.assert_outward(|c| {
+        let l = (c[0] * c[0] + c[2] * c[2]).sqrt();
+        [major * c[0] / l, 0.0, major * c[2] / l]
+    });
+    m
+}
+
+/// `count` random screen-space triangles (x, y in 0..size, depth 0..max_depth), random
+/// non-black colours; Marsaglia's xorshift32.
+fn random_triangles(count: usize, size: f32, max_depth: f32, seed: u32) -> MeshGen {
+    let mut s = seed.max(1);
+    let mut next = move || {
+        s ^= s << 13;
+        s ^= s >> 17;
+        s ^= s << 5;
+        s
+    };
+    let mut vertices = Vec::with_capacity(3 * count);
+    let mut faces = Vec::with_capacity(count);
+    for t in 0..count {
+        for _ in 0..3 {
+            let mut unit = || (next() >> 8) as f32 / (1u32 << 24) as f32;
+            vertices.push([unit() * size, unit() * size, unit() * max_depth]);
+        }
+        let raw = next() as u16 | 0x0821; // never black: low bit of each channel set
+        let color = ((raw >> 11) as u8, ((raw >> 5) & 63) as u8, (raw & 31) as u8);
+        let k = (3 * t) as u16;
+        faces.push((vec![k, k + 1, k + 2], color));
+    }
+    MeshGen { vertices, faces }
+}
+
+fn main() {
+    let mut out = String::from("// Generated by build.rs: do not edit.\n");
+    cube().emit(&mut out, "CUBE");
+    torus(25, 20, 1.0, 0.4).emit(&mut out, "TORUS");
+    random_triangles(400, 240.0, 100.0, 0x2545_f491).emit(&mut out, "RANDOM400");
+    let path = std::path::Path::new(&std::env::var("OUT_DIR").unwrap()).join("meshes.rs");
+    std::fs::write(path, out).unwrap();
+    println!("cargo:rerun-if-changed=build.rs");
+}

@@ -1,0 +1,168 @@
+//! zrow's standard scenes as const data: the same scenes on the host, in the simulator, in the
+//! emulated Cortex-M benches and on the board.
+//!
+//! Meshes are generated once by `build.rs` and compiled in as `static` arrays, so on a
+//! microcontroller they stay in flash: positions in both number formats (the [`Format`] trait
+//! picks the right array), faces as static index slices with a colour each.
+//!
+//! | name | mode | faces |
+//! |---|---|---|
+//! | `cube` | model: the unit cube, 6 quads, one colour each | 6 |
+//! | `mesh1k` | model: a closed torus, 25 × 20 quads as triangles | 1,000 |
+//! | `random400` | screen space: 400 random triangles, depth 0..100, intersecting | 400 |
+//!
+//! Model scenes share one camera (from (2.5, 1.8, 3.2) at the origin, 60° field of view, near
+//! 0.1, far 20) and one light (towards (0.4, 1, 0.7), ambient 0.2).
+//!
+//! ```
+//! use zrow::{FrameBuffer, Q16_16, Scanline};
+//! use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+//! let mut pixels = vec![Rgb565::BLACK; 240 * 240];
+//! let mut renderer = Box::new(Scanline::<Q16_16, 240, 64, 256, 64>::new());
+//! let faces = zrow_scenes::with_scene::<Q16_16, _>("cube", 0.0, |scene, cfg, faces| {
+//!     renderer.render(scene, cfg, &mut FrameBuffer::new(&mut pixels, 240)).unwrap();
+//!     faces
+//! });
+//! assert_eq!(faces, Some(6));
+//! assert!(pixels.iter().any(|&p| p != Rgb565::BLACK));
+//! ```
+#![no_std]
+#![forbid(unsafe_code)]
+#![deny(missing_docs)]
+
+use embedded_graphics_core::pixelcolor::Rgb565;
+use zrow::{
+    Affine, Camera, Config, Face, Light, Mesh, ModelScene, Object, Scalar, Scene, ScreenScene,
+    Vec3, Q16_16,
+};
+
+mod meshes {
+    #![allow(clippy::all)]
+    use super::*;
+    include!(concat!(env!("OUT_DIR"), "/meshes.rs"));
+}
+
+/// The scenes' names, in report order.
+pub const NAMES: [&str; 3] = ["cube", "mesh1k", "random400"];
+
+/// Frame size of every standard scene.
+pub const SIZE: u16 = 240;
+
+/// A number format the scenes exist in: each has its own const positions.
+pub trait Format: Scalar {
+    /// Cube positions.
+    fn cube() -> &'static [Vec3<Self>];
+    /// Torus positions.
+    fn torus() -> &'static [Vec3<Self>];
+    /// Random triangles' positions (screen space).
+    fn random400() -> &'static [Vec3<Self>];
+}
+
+impl Format for f32 {
+    fn cube() -> &'static [Vec3<f32>] {
+        &meshes::CUBE_F32
+    }
+    fn torus() -> &'static [Vec3<f32>] {
+        &meshes::TORUS_F32
+    }
+    fn random400() -> &'static [Vec3<f32>] {
+        &meshes::RANDOM400_F32
+    }
+}
+
+impl Format for Q16_16 {
+    fn cube() -> &'static [Vec3<Q16_16>] {
+        &meshes::CUBE_Q16_16
+    }
+    fn torus() -> &'static [Vec3<Q16_16>] {
+        &meshes::TORUS_Q16_16
+    }
+    fn random400() -> &'static [Vec3<Q16_16>] {
+        &meshes::RANDOM400_Q16_16
+    }
+}
+
+/// The mesh of a standard scene, borrowed from flash.
+pub fn mesh<N: Format>(name: &str) -> Option<Mesh<'static, N>> {
+    let (vertices, faces): (&'static [Vec3<N>], &'static [Face<'static>]) = match name {
+        "cube" => (N::cube(), &meshes::CUBE_FACES),
+        "mesh1k" => (N::torus(), &meshes::TORUS_FACES),
+        "random400" => (N::random400(), &meshes::RANDOM400_FACES),
+        _ => return None,
+    };
+    Some(Mesh { vertices, faces })
+}
+
+/// The model scenes' camera.
+pub fn camera<N: Scalar>() -> Option<Camera<N>> {
+    let projection = Camera::<N>::perspective(60.0 * core::f32::consts::PI / 180.0, 0.1, 20.0)?;
+    Camera::look_at([2.5, 1.8, 3.2], [0.0; 3], [0.0, 1.0, 0.0], projection)
+}
+
+/// The model scenes' light.
+pub fn light<N: Scalar>() -> Option<Light<N>> {
+    Some(Light {
+        direction: Vec3::from_f32([0.4, 1.0, 0.7])?,
+        ambient: N::from_f32(0.2)?,
+    })
+}
+
+/// Calls `f` with the named scene, its configuration (240×240) and its face count; `None` for
+/// an unknown name. `angle` (radians) turns model scenes about the vertical axis.
+pub fn with_scene<N: Format, R>(
+    name: &str,
+    angle: f32,
+    f: impl FnOnce(&dyn Scene<N>, &Config, usize) -> R,
+) -> Option<R> {
+    let mesh = mesh::<N>(name)?;
+    let faces = mesh.faces.len();
+    if name == "random400" {
+        return Some(f(&ScreenScene { mesh }, &Config::screen(SIZE, SIZE), faces));
+    }
+    let objects = [Object {
+        mesh: &mesh,
+        transform: Affine::rotate_yx_translate(0.35 + angle, 0.2, [0.0; 3])?,
+    }];
+    let scene = ModelScene {
+        objects: &objects,
+        camera: camera()?,
+        light: light()?,
+    };
+    Some(f(&scene, &Config::model(SIZE, SIZE), faces))
+}
+
+/// The colour of `Rgb565` pixels as the little-endian `u16` words the frame hash reads.
+pub fn raw(c: Rgb565) -> u16 {
+    use embedded_graphics_core::pixelcolor::IntoStorage;
+    c.into_storage()
+}
+
+/// FNV-1a 64 over pixels as little-endian `u16`: the frame hash the emulated benches and the
+/// host compare.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FrameHash(pub u64);
+
+impl Default for FrameHash {
+    fn default() -> Self {
+        FrameHash(0xcbf2_9ce4_8422_2325)
+    }
+}
+
+impl FrameHash {
+    /// Adds pixels.
+    pub fn add(&mut self, pixels: &[Rgb565]) {
+        for &p in pixels {
+            for b in raw(p).to_le_bytes() {
+                self.0 = (self.0 ^ b as u64).wrapping_mul(0x100_0000_01b3);
+            }
+        }
+    }
+}
+
+impl<N> zrow::RowSink<N> for FrameHash {
+    type Error = core::convert::Infallible;
+    fn write_row(&mut self, row: &zrow::Row<'_, N>) -> Result<(), Self::Error> {
+        self.add(row.intensity);
+        Ok(())
+    }
+}
