@@ -1,6 +1,6 @@
 //! Host time per frame of the scan-line renderer at 240×240, in Q16.16 and f32.
 //!
-//! Scenes (see `scenes.rs`):
+//! Scenes (the shared `zrow-scenes` crate):
 //! - `cube`: the unit cube, 6 quads, model mode, perspective camera, one light;
 //! - `mesh1k`: a closed torus of 1,000 triangles (25 × 20 segments), same camera;
 //! - `random400`: 400 random screen-space triangles (overlapping, intersecting).
@@ -15,8 +15,6 @@
 //! rows); `ram_struct` is `Scanline::RAM_BYTES` of the benchmark's instantiation below.
 //!
 //! Run: `cargo bench -p zrow --bench frame`.
-
-mod scenes;
 
 use criterion::measurement::WallTime;
 use criterion::{
@@ -148,9 +146,9 @@ fn measure<N: Scalar>(
     black_box(sink.acc);
 }
 
-fn scenes_in<N: Scalar>(group: &mut BenchmarkGroup<'_, WallTime>) {
-    for name in scenes::NAMES {
-        scenes::with_scene::<N, _>(name, |scene, cfg, tris| {
+fn scenes_in<N: zrow_scenes::Format>(group: &mut BenchmarkGroup<'_, WallTime>) {
+    for name in zrow_scenes::NAMES {
+        zrow_scenes::with_scene::<N, _>(name, 0.0, |scene, cfg, tris| {
             measure(group, name, tris, scene, cfg)
         });
     }

@@ -7,13 +7,10 @@
 //! ```
 //!
 //! Prints the frame's statistics once; divide callgrind's total for `Scanline::render` by the
-//! frame count. Scenes as in `benches/frame.rs`: cube, mesh1k, random400.
-
-#[path = "../benches/scenes.rs"]
-mod scenes;
+//! frame count. Scenes from `zrow-scenes`: cube, mesh1k, random400.
 
 use std::hint::black_box;
-use zrow::{Row, RowSink, Scalar, Scanline, Q16_16};
+use zrow::{Row, RowSink, Scanline, Q16_16};
 
 struct Sink(u32);
 impl<N> RowSink<N> for Sink {
@@ -24,10 +21,10 @@ impl<N> RowSink<N> for Sink {
     }
 }
 
-fn run<N: Scalar>(name: &str, frames: usize) {
+fn run<N: zrow_scenes::Format>(name: &str, frames: usize) {
     let mut r = Box::new(Scanline::<N, 240, 2048, 6144, 512>::new());
     let mut sink = Sink(0);
-    scenes::with_scene::<N, _>(name, |scene, cfg, _| {
+    zrow_scenes::with_scene::<N, _>(name, 0.0, |scene, cfg, _| {
         for k in 0..frames {
             let stats = r.render(scene, cfg, &mut sink).expect("render");
             if k == 0 {
@@ -35,7 +32,7 @@ fn run<N: Scalar>(name: &str, frames: usize) {
             }
         }
     })
-    .unwrap_or_else(|| panic!("unknown scene {name}: {}", scenes::NAMES.join(", ")));
+    .unwrap_or_else(|| panic!("unknown scene {name}: {}", zrow_scenes::NAMES.join(", ")));
     black_box(sink.0);
 }
 
