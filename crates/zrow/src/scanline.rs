@@ -134,7 +134,9 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
             active: Vec::new(),
             open: BinaryHeap::new(),
             last_rows: Vec::new(),
-            depth: [N::MAX; W],
+            // All zero, so a `static` renderer lands in .bss, not copied from flash; both rows
+            // are rewritten in full before each is sent.
+            depth: [N::ZERO; W],
             intensity: [Rgb565::BLACK; W],
         }
     }

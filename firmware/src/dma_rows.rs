@@ -1,0 +1,136 @@
+//! Rows to the ST7789 by DMA, double-buffered: while the DMA engine sends row y from one
+//! buffer, the renderer computes row y + 1 and this sink encodes it into the other.
+//!
+//! The window (CASET/RASET, the whole panel) is set once at start-up; each frame begins with
+//! RAMWR, which puts the panel's address counter back at the window's top-left corner, then
+//! streams exactly `width × height` pixels as big-endian RGB565.
+//!
+//! The HAL's DMA `Tx` half keeps the SPI for good, so the one command per frame (RAMWR) is
+//! written straight to SPI1's data register, with DC low, once the DMA stream and the SPI are
+//! idle.
+
+use core::convert::Infallible;
+use cortex_m::peripheral::DWT;
+use embedded_hal::digital::OutputPin;
+use stm32f4xx_hal::dma::{config::DmaConfig, MemoryToPeripheral, Stream3, Transfer};
+use stm32f4xx_hal::pac::{self, DMA2, SPI1};
+use stm32f4xx_hal::spi::Tx;
+use zrow::{Row, RowSink};
+
+/// Bytes in one row (240 RGB565 pixels).
+pub const ROW_BYTES: usize = 480;
+/// A row buffer in RAM the DMA engine can read.
+pub type RowBuf = &'static mut [u8; ROW_BYTES];
+type SpiDma = Transfer<Stream3<DMA2>, 3, Tx<SPI1>, MemoryToPeripheral, RowBuf>;
+
+/// RAMWR: write memory from the window's start.
+const RAMWR: u8 = 0x2C;
+
+enum State {
+    /// Before the first row: the parts of a transfer and both buffers.
+    Idle(Stream3<DMA2>, Tx<SPI1>, RowBuf, RowBuf),
+    /// A transfer has been started (and may still be running); the other buffer is free.
+    Running(SpiDma, RowBuf),
+    /// Only while switching between the two.
+    Switching,
+}
+
+/// The DMA row sink.
+pub struct DmaRows<DC> {
+    state: State,
+    dc: DC,
+    /// Cycles spent waiting for the DMA engine or the SPI since the last reset: the part of
+    /// sending that rendering did not hide.
+    pub wait_cycles: u32,
+    /// Rows the DMA engine refused (should stay 0).
+    pub dropped: u32,
+}
+
+impl<DC: OutputPin> DmaRows<DC> {
+    /// Takes DMA2 stream 3 (SPI1 TX, channel 3), the SPI's DMA half, the DC pin and two row
+    /// buffers.
+    pub fn new(stream: Stream3<DMA2>, tx: Tx<SPI1>, dc: DC, a: RowBuf, b: RowBuf) -> Self {
+        DmaRows {
+            state: State::Idle(stream, tx, a, b),
+            dc,
+            wait_cycles: 0,
+            dropped: 0,
+        }
+    }
+
+    /// Sends RAMWR with DC low; the SPI must be idle (it is: callers wait first).
+    fn begin_frame(&mut self) {
+        let _ = self.dc.set_low();
+        // SAFETY: read-only status polls and one write of the data register of SPI1, whose
+        // DMA stream is idle (every transfer has completed): nothing else touches SPI1 now.
+        let spi = unsafe { &*pac::SPI1::ptr() };
+        spi.dr().write(|w| unsafe { w.dr().bits(RAMWR as u16) });
+        wait_spi_idle();
+        let _ = self.dc.set_high();
+    }
+}
+
+/// Waits until SPI1 has shifted out everything written to it.
+fn wait_spi_idle() {
+    // SAFETY: read-only status polls of SPI1.
+    let spi = unsafe { &*pac::SPI1::ptr() };
+    while spi.sr().read().txe().bit_is_clear() {}
+    while spi.sr().read().bsy().bit_is_set() {}
+}
+
+/// Big-endian RGB565, as the ST7789 reads it.
+fn encode(pixels: &[embedded_graphics_core::pixelcolor::Rgb565], out: &mut [u8; ROW_BYTES]) {
+    use embedded_graphics_core::pixelcolor::IntoStorage;
+    for (o, p) in out.chunks_exact_mut(2).zip(pixels) {
+        o.copy_from_slice(&p.into_storage().to_be_bytes());
+    }
+}
+
+impl<N, DC: OutputPin> RowSink<N> for DmaRows<DC> {
+    type Error = Infallible;
+
+    fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), Infallible> {
+        let mut waited = 0u32;
+        self.state = match core::mem::replace(&mut self.state, State::Switching) {
+            State::Idle(stream, tx, a, b) => {
+                encode(row.intensity, a);
+                wait_spi_idle();
+                self.begin_frame();
+                let mut t = Transfer::init_memory_to_peripheral(
+                    stream,
+                    tx,
+                    a,
+                    None,
+                    DmaConfig::default().memory_increment(true).fifo_enable(true),
+                );
+                t.start(|_| {});
+                State::Running(t, b)
+            }
+            State::Running(mut t, spare) => {
+                encode(row.intensity, spare);
+                let t0 = DWT::cycle_count();
+                t.wait(); // the previous row has left memory
+                if row.y == 0 {
+                    wait_spi_idle(); // ... and the SPI
+                    self.begin_frame();
+                }
+                waited = DWT::cycle_count().wrapping_sub(t0);
+                match t.next_transfer(spare) {
+                    Ok((old, _)) => State::Running(t, old),
+                    Err(e) => {
+                        self.dropped += 1;
+                        let buf = match e {
+                            stm32f4xx_hal::dma::DMAError::NotReady(b)
+                            | stm32f4xx_hal::dma::DMAError::SmallBuffer(b)
+                            | stm32f4xx_hal::dma::DMAError::Overrun(b) => b,
+                        };
+                        State::Running(t, buf)
+                    }
+                }
+            }
+            State::Switching => State::Switching,
+        };
+        self.wait_cycles = self.wait_cycles.wrapping_add(waited);
+        Ok(())
+    }
+}
