@@ -1,0 +1,244 @@
+//! The row sink: the address window set once per frame, then one SPI write per row of
+//! big-endian RGB565 bytes; and [`encode_row`], the same encoding as a pure function for
+//! firmware that sends rows by DMA from two buffers of its own.
+
+use crate::command::{self, CASET, RAMWR, RASET};
+use crate::{Error, StreamError};
+use embedded_graphics_core::pixelcolor::{IntoStorage, Rgb565};
+use embedded_hal::delay::DelayNs;
+use embedded_hal::digital::OutputPin;
+use embedded_hal::spi::SpiDevice;
+use zrow::{Row, RowSink};
+
+/// Columns of the ST7789's frame memory (in the default orientation, `MADCTL 0x00`).
+pub const PANEL_WIDTH: u16 = 240;
+/// Rows of the ST7789's frame memory (in the default orientation, `MADCTL 0x00`).
+pub const PANEL_HEIGHT: u16 = 320;
+
+/// Bytes one row of `width` pixels takes on the wire (2 per pixel): the least line-buffer
+/// capacity `B` for [`St7789Rows`].
+pub const fn line_bytes(width: u16) -> usize {
+    2 * width as usize
+}
+
+/// Where the frame goes in the panel's 240 × 320 RAM: `width` × `height` pixels starting at
+/// column `x_offset`, row `y_offset`.
+///
+/// Offsets depend on the module and the orientation, because the glass shows only part of
+/// the RAM. In the default orientation (`MADCTL 0x00`, what [`init_sequence`] sets):
+///
+/// - 240 × 240 modules show columns 0..240, rows 0..240: no offsets (`Window::new(240, 240)`).
+///   Turned 180° (`MADCTL 0xC0`) they show rows 80..320 instead: `y_offset` 80.
+/// - 240 × 320 modules show the whole RAM: no offsets.
+/// - Smaller glass is usually centred, e.g. 135 × 240 modules: `x_offset` 52, `y_offset` 40;
+///   240 × 280: `y_offset` 20. Check the module's documentation.
+///
+/// [`init_sequence`]: crate::init_sequence
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Window {
+    /// Width in pixels (the rows' length).
+    pub width: u16,
+    /// Height in pixels (the number of rows).
+    pub height: u16,
+    /// First RAM column.
+    pub x_offset: u16,
+    /// First RAM row.
+    pub y_offset: u16,
+}
+
+impl Window {
+    /// A `width` × `height` window at the RAM's top-left corner.
+    pub const fn new(width: u16, height: u16) -> Self {
+        Window {
+            width,
+            height,
+            x_offset: 0,
+            y_offset: 0,
+        }
+    }
+
+    /// The same window moved to RAM column `x_offset`, row `y_offset`.
+    pub const fn with_offset(self, x_offset: u16, y_offset: u16) -> Self {
+        Window {
+            x_offset,
+            y_offset,
+            ..self
+        }
+    }
+
+    /// Checks that the window is not empty, fits the panel RAM, and that a line buffer of
+    /// `buffer_bytes` holds one of its rows. A `const fn`, so firmware can check at compile
+    /// time: `const _: () = assert!(WINDOW.check(480).is_ok());`.
+    pub const fn check(&self, buffer_bytes: usize) -> Result<(), StreamError> {
+        if self.width == 0
+            || self.height == 0
+            || self.x_offset as u32 + self.width as u32 > PANEL_WIDTH as u32
+            || self.y_offset as u32 + self.height as u32 > PANEL_HEIGHT as u32
+        {
+            return Err(StreamError::BadWindow);
+        }
+        let needed = line_bytes(self.width);
+        if buffer_bytes < needed {
+            return Err(StreamError::BufferTooSmall {
+                needed: needed as u32,
+                capacity: if buffer_bytes > u32::MAX as usize {
+                    u32::MAX
+                } else {
+                    buffer_bytes as u32
+                },
+            });
+        }
+        Ok(())
+    }
+
+    /// `CASET` parameters: first and last column, big-endian, inclusive.
+    pub const fn caset(&self) -> [u8; 4] {
+        span(self.x_offset, self.width)
+    }
+
+    /// `RASET` parameters: first and last row, big-endian, inclusive.
+    pub const fn raset(&self) -> [u8; 4] {
+        span(self.y_offset, self.height)
+    }
+}
+
+/// Start and inclusive end of `len` addresses from `start`, as the ST7789 takes them.
+const fn span(start: u16, len: u16) -> [u8; 4] {
+    let end = start.wrapping_add(len).wrapping_sub(1);
+    let [s0, s1] = start.to_be_bytes();
+    let [e0, e1] = end.to_be_bytes();
+    [s0, s1, e0, e1]
+}
+
+/// Encodes pixels as the ST7789 takes them in 16-bit mode: RGB565, high byte first.
+///
+/// Writes as many whole pixels as fit in `out` and returns the bytes written (2 per pixel):
+/// `2 * row.len()` when `out` is large enough. A pure function, so a firmware can encode
+/// the next row into one buffer while DMA sends the other.
+///
+/// ```
+/// use embedded_graphics_core::pixelcolor::Rgb565;
+/// let mut out = [0u8; 4];
+/// let n = zrow_st7789::encode_row(&[Rgb565::new(31, 0, 0), Rgb565::new(0, 0, 31)], &mut out);
+/// assert_eq!((n, out), (4, [0xF8, 0x00, 0x00, 0x1F]));
+/// ```
+pub fn encode_row(row: &[Rgb565], out: &mut [u8]) -> usize {
+    let mut n = 0;
+    for (px, dst) in row.iter().zip(out.chunks_exact_mut(2)) {
+        dst.copy_from_slice(&px.into_storage().to_be_bytes());
+        n += 2;
+    }
+    n
+}
+
+/// Streams zrow rows to an ST7789 over an SPI device and a DC pin.
+///
+/// - `SPI`: an [`SpiDevice`] (it owns chip select; wrap a HAL's bus in
+///   `embedded_hal_bus::spi::ExclusiveDevice`);
+/// - `DC`: the data/command pin, low for command bytes, high for parameters and pixels;
+/// - `B`: the line buffer's capacity in bytes, at least [`line_bytes`]`(width)`.
+///
+/// Per frame: [`begin_frame`](Self::begin_frame) sets the window and opens `RAMWR`; the
+/// renderer then hands over rows `0..height` in order through [`RowSink::write_row`], each
+/// sent as one SPI write. After the last row the frame is closed; the next frame starts
+/// with `begin_frame` again. After any error, start again with `begin_frame`.
+pub struct St7789Rows<SPI, DC, const B: usize> {
+    spi: SPI,
+    dc: DC,
+    window: Window,
+    /// The row due next, `None` outside a frame.
+    next_row: Option<u16>,
+    line: [u8; B],
+}
+
+impl<SPI, DC, const B: usize> St7789Rows<SPI, DC, B> {
+    /// A sink for `window`; sends nothing yet. Fails if the window does not fit the panel
+    /// or `B` is below [`line_bytes`]`(window.width)` (see [`Window::check`]).
+    pub fn new(spi: SPI, dc: DC, window: Window) -> Result<Self, StreamError> {
+        window.check(B)?;
+        Ok(St7789Rows {
+            spi,
+            dc,
+            window,
+            next_row: None,
+            line: [0; B],
+        })
+    }
+
+    /// The window rows go to.
+    pub fn window(&self) -> Window {
+        self.window
+    }
+
+    /// The row due next, or `None` outside a frame (before `begin_frame`, after the last row).
+    pub fn next_row(&self) -> Option<u16> {
+        self.next_row
+    }
+
+    /// Gives back the SPI device and the DC pin (for DMA, or another driver).
+    pub fn release(self) -> (SPI, DC) {
+        (self.spi, self.dc)
+    }
+}
+
+impl<SPI: SpiDevice, DC: OutputPin, const B: usize> St7789Rows<SPI, DC, B> {
+    /// Sends the power-on sequence ([`crate::init_sequence`]) with its pauses.
+    pub fn init(&mut self, delay: &mut impl DelayNs) -> Result<(), Error<SPI::Error, DC::Error>> {
+        command::init(&mut self.spi, &mut self.dc, delay)
+    }
+
+    /// Sends one command and its parameters (see [`crate::send_command`]). Closes the frame
+    /// in progress: the panel leaves `RAMWR` at any command.
+    pub fn command(
+        &mut self,
+        command: u8,
+        params: &[u8],
+    ) -> Result<(), Error<SPI::Error, DC::Error>> {
+        self.next_row = None;
+        command::send_command(&mut self.spi, &mut self.dc, command, params)
+    }
+
+    /// Starts a frame: `CASET` and `RASET` with the window, then `RAMWR`. The panel's
+    /// address counter is then at the window's top-left pixel, and row 0 is due.
+    pub fn begin_frame(&mut self) -> Result<(), Error<SPI::Error, DC::Error>> {
+        self.next_row = None;
+        let (spi, dc) = (&mut self.spi, &mut self.dc);
+        command::send_command(spi, dc, CASET, &self.window.caset())?;
+        command::send_command(spi, dc, RASET, &self.window.raset())?;
+        command::send_command(spi, dc, RAMWR, &[])?;
+        self.next_row = Some(0);
+        Ok(())
+    }
+}
+
+impl<N, SPI: SpiDevice, DC: OutputPin, const B: usize> RowSink<N> for St7789Rows<SPI, DC, B> {
+    type Error = Error<SPI::Error, DC::Error>;
+
+    /// Checks the row's place and length, encodes it big-endian into the line buffer and
+    /// sends it with DC high in one SPI write.
+    fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), Self::Error> {
+        let expected = self.next_row.ok_or(StreamError::NoFrame)?;
+        if row.y != expected {
+            return Err(StreamError::OutOfOrder {
+                expected,
+                got: row.y,
+            }
+            .into());
+        }
+        let width = self.window.width;
+        if row.intensity.len() != width as usize {
+            return Err(StreamError::WrongLength {
+                expected: width,
+                got: u32::try_from(row.intensity.len()).unwrap_or(u32::MAX),
+            }
+            .into());
+        }
+        // `new` checked B >= 2 * width, so the whole row fits.
+        let n = encode_row(row.intensity, &mut self.line);
+        self.dc.set_high().map_err(Error::Dc)?;
+        self.spi.write(&self.line[..n]).map_err(Error::Spi)?;
+        self.next_row = (expected + 1 < self.window.height).then_some(expected + 1);
+        Ok(())
+    }
+}

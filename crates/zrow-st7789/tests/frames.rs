@@ -1,0 +1,97 @@
+//! The decoded panel frame equals the core's render of the same scene, bit for bit: small
+//! scenes at 240x240 and at a smaller, offset window, the standard scenes, both formats.
+
+mod common;
+
+use common::*;
+use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+use zrow::{Config, Scalar, Q16_16};
+use zrow_st7789::mock::MockBus;
+use zrow_st7789::{St7789Rows, Window};
+
+/// Windows: the whole 240x240 module, and a small window placed off the RAM's corner.
+const WINDOWS: [Window; 2] = [
+    Window::new(240, 240),
+    Window::new(64, 48).with_offset(30, 100),
+];
+
+fn small_scenes<N: Scalar>() {
+    for window in WINDOWS {
+        let cfg = Config::screen(window.width, window.height);
+        for (name, polys) in [
+            ("seed pair", seed_pair(window.width, window.height)),
+            ("overlapping", overlapping(window.width, window.height)),
+        ] {
+            let both = polys.with_scene::<N, _>(|scene| render_both(scene, &cfg, window));
+            both.check();
+            // Not a vacuous comparison: the scene draws, in several colours.
+            assert!(
+                both.drawn() > both.frame.len() / 4,
+                "{name} {window:?}: {} drawn",
+                both.drawn()
+            );
+            assert!(both.colours() >= 3, "{name} {window:?}");
+        }
+    }
+}
+
+#[test]
+fn small_scenes_q16_16() {
+    small_scenes::<Q16_16>();
+}
+
+#[test]
+fn small_scenes_f32() {
+    small_scenes::<f32>();
+}
+
+fn standard_scenes<N: zrow_scenes::Format>() {
+    for name in zrow_scenes::NAMES {
+        let both = zrow_scenes::with_scene::<N, _>(name, 0.0, |scene, cfg, _| {
+            render_both(scene, cfg, Window::new(cfg.width, cfg.height))
+        })
+        .unwrap();
+        both.check();
+        assert!(both.drawn() > 1000, "{name}: {} drawn", both.drawn());
+    }
+}
+
+#[test]
+fn standard_scenes_q16_16() {
+    standard_scenes::<Q16_16>();
+}
+
+#[test]
+fn standard_scenes_f32() {
+    standard_scenes::<f32>();
+}
+
+/// Two frames through one sink: the second overwrites the first exactly, with the window
+/// set again (the address counter back at the top-left).
+#[test]
+fn consecutive_frames() {
+    let window = WINDOWS[1];
+    let cfg = Config::screen(window.width, window.height);
+    let bus = MockBus::new();
+    let mut panel = St7789Rows::<_, _, B>::new(bus.spi(), bus.dc(), window).unwrap();
+    panel.init(&mut bus.delay()).unwrap();
+    let mut renderer = Box::new(Big::<Q16_16>::new());
+    let mut last = Vec::new();
+    for polys in [overlapping(64, 48), seed_pair(64, 48)] {
+        bus.model_mut().clear_write_counts();
+        polys.with_scene::<Q16_16, _>(|scene| {
+            panel.begin_frame().unwrap();
+            renderer.render(scene, &cfg, &mut panel).unwrap();
+            let mut frame = vec![Rgb565::BLACK; 64 * 48];
+            renderer
+                .render(scene, &cfg, &mut zrow::FrameBuffer::new(&mut frame, 64))
+                .unwrap();
+            last = frame;
+        });
+        let model = bus.model();
+        assert_eq!(model.read_window(&window), last);
+        assert_eq!(model.errors(), &[]);
+        assert_eq!(model.writes_at(30, 100), 1);
+        assert_eq!(model.writes_at(30 + 63, 100 + 47), 1);
+    }
+}
