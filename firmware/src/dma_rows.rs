@@ -7,7 +7,8 @@
 //!
 //! The HAL's DMA `Tx` half keeps the SPI for good, so the one command per frame (RAMWR) is
 //! written straight to SPI1's data register, with DC low, once the DMA stream and the SPI are
-//! idle.
+//! idle. The bytes and commands are `zrow-st7789`'s, whose panel model checks this protocol
+//! (`crates/zrow-st7789/tests/stream.rs`).
 
 use core::convert::Infallible;
 use cortex_m::peripheral::DWT;
@@ -16,15 +17,13 @@ use stm32f4xx_hal::dma::{config::DmaConfig, MemoryToPeripheral, Stream3, Transfe
 use stm32f4xx_hal::pac::{self, DMA2, SPI1};
 use stm32f4xx_hal::spi::Tx;
 use zrow::{Row, RowSink};
+use zrow_st7789::{command::RAMWR, encode_row};
 
 /// Bytes in one row (240 RGB565 pixels).
 pub const ROW_BYTES: usize = 480;
 /// A row buffer in RAM the DMA engine can read.
 pub type RowBuf = &'static mut [u8; ROW_BYTES];
 type SpiDma = Transfer<Stream3<DMA2>, 3, Tx<SPI1>, MemoryToPeripheral, RowBuf>;
-
-/// RAMWR: write memory from the window's start.
-const RAMWR: u8 = 0x2C;
 
 enum State {
     /// Before the first row: the parts of a transfer and both buffers.
@@ -78,14 +77,6 @@ fn wait_spi_idle() {
     while spi.sr().read().bsy().bit_is_set() {}
 }
 
-/// Big-endian RGB565, as the ST7789 reads it.
-fn encode(pixels: &[embedded_graphics_core::pixelcolor::Rgb565], out: &mut [u8; ROW_BYTES]) {
-    use embedded_graphics_core::pixelcolor::IntoStorage;
-    for (o, p) in out.chunks_exact_mut(2).zip(pixels) {
-        o.copy_from_slice(&p.into_storage().to_be_bytes());
-    }
-}
-
 impl<N, DC: OutputPin> RowSink<N> for DmaRows<DC> {
     type Error = Infallible;
 
@@ -93,7 +84,7 @@ impl<N, DC: OutputPin> RowSink<N> for DmaRows<DC> {
         let mut waited = 0u32;
         self.state = match core::mem::replace(&mut self.state, State::Switching) {
             State::Idle(stream, tx, a, b) => {
-                encode(row.intensity, a);
+                encode_row(row.intensity, a);
                 wait_spi_idle();
                 self.begin_frame();
                 let mut t = Transfer::init_memory_to_peripheral(
@@ -101,13 +92,15 @@ impl<N, DC: OutputPin> RowSink<N> for DmaRows<DC> {
                     tx,
                     a,
                     None,
-                    DmaConfig::default().memory_increment(true).fifo_enable(true),
+                    DmaConfig::default()
+                        .memory_increment(true)
+                        .fifo_enable(true),
                 );
                 t.start(|_| {});
                 State::Running(t, b)
             }
             State::Running(mut t, spare) => {
-                encode(row.intensity, spare);
+                encode_row(row.intensity, spare);
                 let t0 = DWT::cycle_count();
                 t.wait(); // the previous row has left memory
                 if row.y == 0 {

@@ -31,7 +31,9 @@ use stm32f4xx_hal::{
     rcc,
     spi::{Mode, Phase, Polarity},
 };
-use zrow::{Q16_16, Scanline};
+use zrow::{Scanline, Q16_16};
+use zrow_st7789::command::{CASET, RASET};
+use zrow_st7789::Window;
 
 /// System clock.
 const SYSCLK_HZ: u32 = 100_000_000;
@@ -49,8 +51,7 @@ const FRAMES_PER_SCENE: u32 = 256;
 
 #[entry]
 fn main() -> ! {
-    let (Some(dp), Some(mut cp)) = (pac::Peripherals::take(), cortex_m::Peripherals::take())
-    else {
+    let (Some(dp), Some(mut cp)) = (pac::Peripherals::take(), cortex_m::Peripherals::take()) else {
         panic!("peripherals taken twice");
     };
     let mut rcc = dp.RCC.freeze(rcc::Config::hse(25.MHz()).sysclk(100.MHz()));
@@ -92,17 +93,18 @@ fn main() -> ! {
             defmt::error!("ST7789 init failed");
         }
     }
-    // The window, once: columns and rows 0..=239 (CASET, RASET). CS stays low from here on.
-    let _ = cs.set_low();
-    for (cmd, params) in [(0x2Au8, [0u8, 0, 0, 239]), (0x2B, [0, 0, 0, 239])] {
-        let _ = dc.set_low();
+    // The window, once: the whole panel (CASET, RASET). CS stays low from here on.
+    cs.set_low();
+    let window = Window::new(240, 240);
+    for (cmd, params) in [(CASET, window.caset()), (RASET, window.raset())] {
+        dc.set_low();
         let _ = spi.write(&[cmd]);
         let _ = spi.flush();
-        let _ = dc.set_high();
+        dc.set_high();
         let _ = spi.write(&params);
         let _ = spi.flush();
     }
-    let _ = backlight.set_high();
+    backlight.set_high();
 
     let streams = StreamsTuple::new(dp.DMA2, &mut rcc);
     let mut rows = DmaRows::new(
@@ -129,7 +131,7 @@ fn main() -> ! {
         });
         let cycles = DWT::cycle_count().wrapping_sub(t0);
         match result {
-            Some(Ok(stats)) if frame % 32 == 0 => defmt::info!(
+            Some(Ok(stats)) if frame.is_multiple_of(32) => defmt::info!(
                 "{=str}: {} polygons, render {} cyc, SPI wait {} cyc, {} fps",
                 name,
                 stats.polygons,
