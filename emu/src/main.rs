@@ -1,0 +1,182 @@
+//! zrow's emulated bench: renders each standard scene once per number format on a QEMU
+//! Cortex-M (mps2-an386 = Cortex-M4F, mps2-an385 = Cortex-M3) and prints, per frame,
+//!
+//! ```text
+//! scene=NAME format=FMT tris=N instructions=? ram=BYTES hash=HEX
+//! ```
+//!
+//! - `tris`: the scene's face count (zrow-scenes);
+//! - `instructions`: printed as `?` by the guest, which cannot count itself. The frame is
+//!   bracketed by calls to [`zrow_bench_start`] and [`zrow_bench_stop`]; the qemu-icount
+//!   plugin (tools/qemu-icount) counts the guest instructions executed between them, one count
+//!   per pair, in order, and `emu/run.sh` puts the k-th count into the k-th `instructions=?`;
+//! - `ram`: `zrow::scanline::ram_bytes::<N>(&req)` with `req = zrow::requirements(..)`
+//!   measured here on the guest: the renderer's tables at exactly the sizes this frame needs,
+//!   plus its two rows;
+//! - `hash`: FNV-1a 64 over every row's Rgb565 pixels as little-endian `u16`, top to bottom
+//!   ([`zrow_scenes::FrameHash`], the same function the host check uses), 16 hex digits.
+//!
+//! Lines starting with `#` are informational. Two calibration pairs come first: the two markers
+//! called back to back (their own overhead, in every count) and the hash sink alone over 240
+//! rows (the part of every frame's count that is the bench's sink, not the renderer).
+//!
+//! Output goes through semihosting; the bench ends with `debug::exit` (success, or failure
+//! after an `error` line or a panic), which becomes QEMU's exit status.
+#![no_std]
+#![no_main]
+
+use core::hint::black_box;
+use core::sync::atomic::{compiler_fence, AtomicU32, Ordering};
+use cortex_m_rt::entry;
+use cortex_m_semihosting::{debug, hprintln};
+use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+use zrow::{Scanline, Q16_16};
+use zrow_scenes::{Format, FrameHash, NAMES};
+
+/// The renderer every frame uses: 240-pixel rows, 1024 polygons, 3072 edges, 512 active
+/// polygons — generous for the standard scenes (the `ram=` field is what a frame really needs).
+type Renderer<N> = Scanline<N, 240, 1024, 3072, 512>;
+
+/// How often the start marker ran (printed at the end: the optimiser cannot drop the counts,
+/// and the two markers' bodies differ, so LLVM cannot merge them into one address).
+static STARTS: AtomicU32 = AtomicU32::new(0);
+/// How often the stop marker ran.
+static STOPS: AtomicU32 = AtomicU32::new(0);
+
+/// Start marker: the plugin opens a pair at this function's first instruction. Never inlined,
+/// unmangled so that scripts find it by name, fenced so the optimiser keeps the frame's memory
+/// accesses after it.
+#[no_mangle]
+#[inline(never)]
+pub extern "C" fn zrow_bench_start() {
+    compiler_fence(Ordering::SeqCst);
+    // One core and no interrupts: a plain load and store, no read-modify-write loop.
+    STARTS.store(
+        STARTS.load(Ordering::Relaxed).wrapping_add(1),
+        Ordering::Relaxed,
+    );
+    compiler_fence(Ordering::SeqCst);
+}
+
+/// Stop marker: the plugin closes the pair at this function's first instruction. Its body
+/// differs from [`zrow_bench_start`]'s (another counter), so the two keep separate addresses.
+#[no_mangle]
+#[inline(never)]
+pub extern "C" fn zrow_bench_stop() {
+    compiler_fence(Ordering::SeqCst);
+    STOPS.store(
+        STOPS.load(Ordering::Relaxed).wrapping_add(1),
+        Ordering::Relaxed,
+    );
+    compiler_fence(Ordering::SeqCst);
+}
+
+/// Hashes 240 rows of 240 pixels between the markers, as the sink does in every frame: the
+/// share of each frame's count that is the bench's sink rather than the renderer (on the board
+/// the sink is the SPI transfer instead).
+fn hash_alone() {
+    let row = black_box([Rgb565::BLACK; 240]);
+    let mut sink = FrameHash::default();
+    zrow_bench_start();
+    for _ in 0..240 {
+        sink.add(black_box(&row));
+    }
+    zrow_bench_stop();
+    black_box(sink.0);
+}
+
+/// One frame's report line, without the instruction count (which the host fills in).
+struct Line {
+    tris: usize,
+    ram: usize,
+    hash: u64,
+}
+
+/// Renders scene `name` in format `N` once, between the markers, and reports it.
+fn bench<N: Format>(renderer: &mut Renderer<N>, name: &str) -> Result<Line, &'static str> {
+    zrow_scenes::with_scene::<N, _>(name, 0.0, |scene, cfg, tris| {
+        let mut rows = [0u32; 241];
+        let req = zrow::requirements(scene, cfg, &mut rows).map_err(|_| "requirements failed")?;
+        let mut sink = FrameHash::default();
+        let renderer = black_box(&mut *renderer);
+        zrow_bench_start();
+        let result = renderer.render(scene, cfg, &mut sink);
+        zrow_bench_stop();
+        black_box(&sink);
+        result.map_err(|_| "render failed (capacity or scene error)")?;
+        Ok(Line {
+            tris,
+            ram: zrow::scanline::ram_bytes::<N>(&req),
+            hash: sink.0,
+        })
+    })
+    .unwrap_or(Err("unknown scene"))
+}
+
+/// Benchmarks every standard scene in format `N`; false after an error line.
+fn bench_format<N: Format>(renderer: &mut Renderer<N>, name: &str) -> bool {
+    match bench(renderer, name) {
+        Ok(l) => {
+            hprintln!(
+                "scene={name} format={} tris={} instructions=? ram={} hash={:016x}",
+                N::NAME,
+                l.tris,
+                l.ram,
+                l.hash
+            );
+            true
+        }
+        Err(e) => {
+            hprintln!("error scene={name} format={}: {e}", N::NAME);
+            false
+        }
+    }
+}
+
+#[entry]
+fn main() -> ! {
+    let q16 = cortex_m::singleton!(: Renderer<Q16_16> = Renderer::new());
+    let f32s = cortex_m::singleton!(: Renderer<f32> = Renderer::new());
+    let (Some(q16), Some(f32s)) = (q16, f32s) else {
+        unreachable!("main runs once")
+    };
+    hprintln!(
+        "# zrow emulated bench, target {}, renderer {} B (Q16.16) / {} B (f32) as built",
+        env!("BENCH_TARGET"),
+        Renderer::<Q16_16>::RAM_BYTES,
+        Renderer::<f32>::RAM_BYTES
+    );
+    zrow_bench_start();
+    zrow_bench_stop();
+    hprintln!("# calibration (the two markers back to back) instructions=?");
+    hash_alone();
+    hprintln!("# hash sink alone (240 rows of 240 pixels) instructions=?");
+    let mut ok = true;
+    for name in NAMES {
+        ok &= bench_format(q16, name);
+        ok &= bench_format(f32s, name);
+    }
+    hprintln!(
+        "# pairs: starts={} stops={}",
+        STARTS.load(Ordering::Relaxed),
+        STOPS.load(Ordering::Relaxed)
+    );
+    debug::exit(if ok {
+        debug::EXIT_SUCCESS
+    } else {
+        debug::EXIT_FAILURE
+    });
+    loop {
+        cortex_m::asm::wfi();
+    }
+}
+
+/// Panics print their message through semihosting and end QEMU with a failure status.
+#[panic_handler]
+fn panic(info: &core::panic::PanicInfo) -> ! {
+    hprintln!("error panic: {info}");
+    debug::exit(debug::EXIT_FAILURE);
+    loop {
+        cortex_m::asm::wfi();
+    }
+}
