@@ -115,7 +115,16 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
 }
 
 /// Rounds `n / d` to nearest, ties away from zero. `d > 0`.
+///
+/// Divides in 64 bits when both fit (the common case): on a 32-bit core a 128-bit division
+/// is a much longer library call. Same result either way.
 fn div_round(n: i128, d: i128) -> i128 {
+    if let (Ok(n), Ok(d)) = (i64::try_from(n), i64::try_from(d)) {
+        if n > i64::MIN / 2 && n < i64::MAX / 2 {
+            let q = if n >= 0 { (n + d / 2) / d } else { -((-n + d / 2) / d) };
+            return q as i128;
+        }
+    }
     if n >= 0 {
         (n + d / 2) / d
     } else {
