@@ -1,13 +1,13 @@
 //! Rows to the ST7789 by DMA, double-buffered: while the DMA engine sends row y from one
 //! buffer, the renderer computes row y + 1 and this sink encodes it into the other.
 //!
-//! The window (CASET/RASET, the whole panel) is set once at start-up; each frame begins with
-//! RAMWR, which puts the panel's address counter back at the window's top-left corner, then
-//! streams exactly `width × height` pixels as big-endian RGB565.
+//! Each frame begins with the window (CASET, RASET: the whole panel) and RAMWR, which puts the
+//! panel's address counter at the window's top-left corner; then exactly `width × height`
+//! pixels follow as big-endian RGB565, one DMA transfer a row.
 //!
-//! The HAL's DMA `Tx` half keeps the SPI for good, so the one command per frame (RAMWR) is
-//! written straight to SPI1's data register, with DC low, once the DMA stream and the SPI are
-//! idle. The bytes and commands are `zrow-st7789`'s, whose panel model checks this protocol
+//! The HAL's DMA `Tx` half keeps the SPI for good, so those few command bytes per frame are
+//! written straight to SPI1's data register, DC low for a command and high for its
+//! parameters, once the DMA stream and the SPI are idle. The bytes and commands are `zrow-st7789`'s, whose panel model checks this protocol
 //! (`crates/zrow-st7789/tests/stream.rs`).
 
 use core::convert::Infallible;
@@ -17,7 +17,8 @@ use stm32f4xx_hal::dma::{config::DmaConfig, MemoryToPeripheral, Stream3, Transfe
 use stm32f4xx_hal::pac::{self, DMA2, SPI1};
 use stm32f4xx_hal::spi::Tx;
 use zrow::{Row, RowSink};
-use zrow_st7789::{command::RAMWR, encode_row};
+use zrow_st7789::command::{CASET, RAMWR, RASET};
+use zrow_st7789::{encode_row, Window};
 
 /// Bytes in one row (240 RGB565 pixels).
 pub const ROW_BYTES: usize = 480;
@@ -57,16 +58,35 @@ impl<DC: OutputPin> DmaRows<DC> {
         }
     }
 
-    /// Sends RAMWR with DC low; the SPI must be idle (it is: callers wait first).
+    /// Sends the window and RAMWR; the SPI must be idle (it is: callers wait first).
     fn begin_frame(&mut self) {
+        let window = Window::new(240, 240);
+        self.command(CASET, &window.caset());
+        self.command(RASET, &window.raset());
+        self.command(RAMWR, &[]);
+    }
+
+    /// One command byte with DC low, then its parameters with DC high, each shifted out
+    /// completely before DC changes.
+    fn command(&mut self, command: u8, params: &[u8]) {
         let _ = self.dc.set_low();
-        // SAFETY: read-only status polls and one write of the data register of SPI1, whose
-        // DMA stream is idle (every transfer has completed): nothing else touches SPI1 now.
-        let spi = unsafe { &*pac::SPI1::ptr() };
-        spi.dr().write(|w| unsafe { w.dr().bits(RAMWR as u16) });
+        write_byte(command);
         wait_spi_idle();
         let _ = self.dc.set_high();
+        for &p in params {
+            write_byte(p);
+        }
+        wait_spi_idle();
     }
+}
+
+/// Writes one byte to SPI1 once its transmit buffer is free.
+fn write_byte(byte: u8) {
+    // SAFETY: status polls and data-register writes of SPI1 while its DMA stream is idle
+    // (every transfer has completed): nothing else touches SPI1 now.
+    let spi = unsafe { &*pac::SPI1::ptr() };
+    while spi.sr().read().txe().bit_is_clear() {}
+    spi.dr().write(|w| unsafe { w.dr().bits(byte as u16) });
 }
 
 /// Waits until SPI1 has shifted out everything written to it.

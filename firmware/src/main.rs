@@ -1,7 +1,7 @@
 //! zrow on an STM32F411 "Black Pill" driving a 240×240 ST7789 over SPI1.
 //!
-//! The panel is initialised with mipidsi; after that the firmware streams rows itself: the
-//! window is set once, each frame starts with RAMWR, and every row leaves by DMA from one of two
+//! The panel is initialised with mipidsi; after that the firmware streams rows itself: each
+//! frame sets the window once and sends RAMWR, and every row leaves by DMA from one of two
 //! buffers while the renderer computes the next row into the other (see `dma_rows`).
 //!
 //! The demo shows the simulator's scenes (the `zrow-scenes` crate, const data in flash): the
@@ -32,8 +32,6 @@ use stm32f4xx_hal::{
     spi::{Mode, Phase, Polarity},
 };
 use zrow::{Scanline, Q16_16};
-use zrow_st7789::command::{CASET, RASET};
-use zrow_st7789::Window;
 
 /// System clock.
 const SYSCLK_HZ: u32 = 100_000_000;
@@ -93,17 +91,8 @@ fn main() -> ! {
             defmt::error!("ST7789 init failed");
         }
     }
-    // The window, once: the whole panel (CASET, RASET). CS stays low from here on.
+    // CS stays low from here on: the row sink owns the bus.
     cs.set_low();
-    let window = Window::new(240, 240);
-    for (cmd, params) in [(CASET, window.caset()), (RASET, window.raset())] {
-        dc.set_low();
-        let _ = spi.write(&[cmd]);
-        let _ = spi.flush();
-        dc.set_high();
-        let _ = spi.write(&params);
-        let _ = spi.flush();
-    }
     backlight.set_high();
 
     let streams = StreamsTuple::new(dp.DMA2, &mut rcc);

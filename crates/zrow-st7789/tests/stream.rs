@@ -1,5 +1,5 @@
-//! The firmware's DMA path protocol, checked against the panel model: the init table, the
-//! window set once, then per frame RAMWR and `height` rows of `encode_row` bytes (each row one
+//! The firmware's DMA path protocol, checked against the panel model: the init table, then per
+//! frame the window (CASET, RASET), RAMWR and `height` rows of `encode_row` bytes (each row one
 //! data write, as one DMA transfer sends it). Two consecutive frames of a turning standard
 //! scene must each equal the core's render bit for bit, and the model must see no protocol
 //! error.
@@ -20,7 +20,16 @@ impl<N> RowSink<N> for DmaLike<'_> {
     type Error = ();
     fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), ()> {
         if row.y == 0 {
-            self.model.feed(false, &[RAMWR]); // each frame restarts at the window's corner
+            // Each frame: the window, then RAMWR (the address counter to its corner).
+            let window = Window::new(240, 240);
+            for (cmd, params) in [
+                (CASET, &window.caset()[..]),
+                (RASET, &window.raset()),
+                (RAMWR, &[]),
+            ] {
+                self.model.feed(false, &[cmd]);
+                self.model.feed(true, params);
+            }
         }
         let n = encode_row(row.intensity, &mut self.line);
         self.model.feed(true, &self.line[..n]);
@@ -29,7 +38,7 @@ impl<N> RowSink<N> for DmaLike<'_> {
 }
 
 #[test]
-fn window_once_then_ramwr_and_rows_per_frame() {
+fn window_ramwr_and_rows_each_frame() {
     let mut model = St7789Model::new();
     for &(cmd, params, delay_ms) in init_sequence() {
         model.feed(false, &[cmd]);
@@ -37,10 +46,6 @@ fn window_once_then_ramwr_and_rows_per_frame() {
         model.advance_ns(delay_ms as u64 * 1_000_000);
     }
     let window = Window::new(240, 240);
-    model.feed(false, &[CASET]);
-    model.feed(true, &window.caset());
-    model.feed(false, &[RASET]);
-    model.feed(true, &window.raset());
 
     let mut renderer = Box::new(Scanline::<Q16_16, 240, 1024, 4096, 512>::new());
     for (frame, name) in ["mesh1k", "mesh1k", "cube"].iter().enumerate() {
