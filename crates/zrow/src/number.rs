@@ -121,7 +121,11 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
 fn div_round(n: i128, d: i128) -> i128 {
     if let (Ok(n), Ok(d)) = (i64::try_from(n), i64::try_from(d)) {
         if n > i64::MIN / 2 && n < i64::MAX / 2 {
-            let q = if n >= 0 { (n + d / 2) / d } else { -((-n + d / 2) / d) };
+            let q = if n >= 0 {
+                (n + d / 2) / d
+            } else {
+                -((-n + d / 2) / d)
+            };
             return q as i128;
         }
     }
