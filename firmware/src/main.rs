@@ -4,8 +4,8 @@
 //! frame sets the window once and sends RAMWR, and every row leaves by DMA from one of two
 //! buffers while the renderer computes the next row into the other (see `dma_rows`).
 //!
-//! The demo shows the simulator's scenes (the `zrow-scenes` crate, const data in flash): the
-//! cube and the 1,000-triangle torus, turning, in Q16.16. Every 32 frames it logs, through
+//! The demo shows the simulator's scenes (`zrow_scenes::DEMOS`, const data in flash): two
+//! linked rings pierced by a cube, the cube, and the 1,000-triangle torus, turning, in Q16.16. Every 32 frames it logs, through
 //! defmt, the cycles of the last frame (DWT CYCCNT at 100 MHz): render, SPI wait (sending that
 //! rendering did not hide), and frames per second.
 //!
@@ -36,15 +36,15 @@ use zrow::{Scanline, Q16_16};
 /// System clock.
 const SYSCLK_HZ: u32 = 100_000_000;
 /// Renderer capacities for the demo scenes over a full turn (measured with
-/// `zrow::requirements`: the torus needs at most 462 polygons, 1,316 edges, 67 active).
+/// `zrow::requirements`: the torus needs at most 462 polygons, 1,316 edges, 67 active;
+/// `crates/zrow-scenes/tests/demos.rs` checks every demo fits).
 type Renderer = Scanline<Q16_16, 240, 480, 1344, 72>;
 
 static RENDERER: ConstStaticCell<Renderer> = ConstStaticCell::new(Renderer::new());
 static ROW_A: ConstStaticCell<[u8; ROW_BYTES]> = ConstStaticCell::new([0; ROW_BYTES]);
 static ROW_B: ConstStaticCell<[u8; ROW_BYTES]> = ConstStaticCell::new([0; ROW_BYTES]);
 
-/// The scenes the demo turns through, and frames per scene.
-const DEMO: [&str; 2] = ["cube", "mesh1k"];
+/// Frames per demo scene (the simulator's demos, `zrow_scenes::DEMOS`).
 const FRAMES_PER_SCENE: u32 = 256;
 
 #[entry]
@@ -111,7 +111,8 @@ fn main() -> ! {
 
     let mut frame = 0u32;
     loop {
-        let name = DEMO[(frame / FRAMES_PER_SCENE) as usize % DEMO.len()];
+        let demos = zrow_scenes::DEMOS;
+        let name = demos[(frame / FRAMES_PER_SCENE) as usize % demos.len()];
         let angle = frame as f32 * 0.03;
         rows.wait_cycles = 0;
         let t0 = DWT::cycle_count();

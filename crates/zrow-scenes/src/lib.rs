@@ -11,6 +11,10 @@
 //! | `mesh1k` | model: a closed torus, 25 × 20 quads as triangles | 1,000 |
 //! | `random400` | screen space: 400 random triangles, depth 0..100, intersecting | 400 |
 //!
+//! Demo scenes ([`DEMOS`], for the simulator window and the board): `interlocked` — two
+//! 256-triangle rings linked through each other and a cube piercing both, turning, so hidden
+//! surfaces change every frame — then `cube` and `mesh1k`.
+//!
 //! Model scenes share one camera (from (2.5, 1.8, 3.2) at the origin, 60° field of view, near
 //! 0.1, far 20) and one light (towards (0.4, 1, 0.7), ambient 0.2).
 //!
@@ -45,6 +49,9 @@ mod meshes {
 /// The scenes' names, in report order.
 pub const NAMES: [&str; 3] = ["cube", "mesh1k", "random400"];
 
+/// The demo scenes, in the order the simulator and the board show them.
+pub const DEMOS: [&str; 3] = ["interlocked", "cube", "mesh1k"];
+
 /// Frame size of every standard scene.
 pub const SIZE: u16 = 240;
 
@@ -56,6 +63,8 @@ pub trait Format: Scalar {
     fn torus() -> &'static [Vec3<Self>];
     /// Random triangles' positions (screen space).
     fn random400() -> &'static [Vec3<Self>];
+    /// The demo's ring (a 16 × 8 torus) positions.
+    fn ring() -> &'static [Vec3<Self>];
 }
 
 impl Format for f32 {
@@ -68,6 +77,9 @@ impl Format for f32 {
     fn random400() -> &'static [Vec3<f32>] {
         &meshes::RANDOM400_F32
     }
+    fn ring() -> &'static [Vec3<f32>] {
+        &meshes::RING_F32
+    }
 }
 
 impl Format for Q16_16 {
@@ -79,6 +91,9 @@ impl Format for Q16_16 {
     }
     fn random400() -> &'static [Vec3<Q16_16>] {
         &meshes::RANDOM400_Q16_16
+    }
+    fn ring() -> &'static [Vec3<Q16_16>] {
+        &meshes::RING_Q16_16
     }
 }
 
@@ -108,12 +123,16 @@ pub fn light<N: Scalar>() -> Option<Light<N>> {
 }
 
 /// Calls `f` with the named scene, its configuration (240×240) and its face count; `None` for
-/// an unknown name. `angle` (radians) turns model scenes about the vertical axis.
+/// an unknown name. `angle` (radians) turns model scenes about the vertical axis. Names: the
+/// standard scenes ([`NAMES`]) and the demos ([`DEMOS`]).
 pub fn with_scene<N: Format, R>(
     name: &str,
     angle: f32,
     f: impl FnOnce(&dyn Scene<N>, &Config, usize) -> R,
 ) -> Option<R> {
+    if name == "interlocked" {
+        return interlocked(angle, f);
+    }
     let mesh = mesh::<N>(name)?;
     let faces = mesh.faces.len();
     if name == "random400" {
@@ -128,6 +147,45 @@ pub fn with_scene<N: Format, R>(
         camera: camera()?,
         light: light()?,
     };
+    Some(f(&scene, &Config::model(SIZE, SIZE), faces))
+}
+
+/// Two rings linked through each other and a small cube through both, turning by `angle`.
+fn interlocked<N: Format, R>(
+    angle: f32,
+    f: impl FnOnce(&dyn Scene<N>, &Config, usize) -> R,
+) -> Option<R> {
+    let ring = Mesh {
+        vertices: N::ring(),
+        faces: &meshes::RING_FACES,
+    };
+    let cube = Mesh {
+        vertices: N::cube(),
+        faces: &meshes::CUBE_FACES,
+    };
+    // Ring A lies flat, ring B stands up through A's hole; the cube sits where they cross.
+    let turn = |yaw: f32, pitch: f32, t: [f32; 3]| Affine::rotate_yx_translate(yaw, pitch, t);
+    let spin = Affine::rotate_yx_translate(angle, 0.3, [0.0; 3])?;
+    let objects = [
+        Object {
+            mesh: &ring,
+            transform: spin.then_after(&turn(0.0, 0.0, [-0.35, 0.0, 0.0])?),
+        },
+        Object {
+            mesh: &ring,
+            transform: spin.then_after(&turn(0.0, core::f32::consts::FRAC_PI_2, [0.35, 0.0, 0.0])?),
+        },
+        Object {
+            mesh: &cube,
+            transform: spin.then_after(&turn(2.0 * angle, 0.6, [0.0, 0.0, 0.0])?),
+        },
+    ];
+    let scene = ModelScene {
+        objects: &objects,
+        camera: camera()?,
+        light: light()?,
+    };
+    let faces = 2 * ring.faces.len() + cube.faces.len();
     Some(f(&scene, &Config::model(SIZE, SIZE), faces))
 }
 
