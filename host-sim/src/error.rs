@@ -4,6 +4,7 @@
 //! Errors about a scene file start with `FILE:LINE:` (or `FILE:` when no line is to blame, as
 //! for a capacity the whole scene exceeds).
 
+use crate::model::ModelError;
 use crate::off::OffError;
 use core::fmt;
 use std::io;
@@ -16,6 +17,8 @@ pub enum SimError {
     Usage(String),
     /// The scene file does not parse.
     Off(OffError),
+    /// A model file (OBJ, STL, OFF in model mode) is malformed or unusable.
+    Model(ModelError),
     /// zrow rejected the scene: a face (blamed on its line when the error names one) or a
     /// capacity.
     Scene {
@@ -61,6 +64,7 @@ impl fmt::Display for SimError {
         match self {
             SimError::Usage(m) => write!(f, "{m} (see `zrow-sim --help`)"),
             SimError::Off(e) => e.fmt(f),
+            SimError::Model(e) => e.fmt(f),
             SimError::Scene {
                 file,
                 line: Some(line),
@@ -86,6 +90,7 @@ impl std::error::Error for SimError {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match self {
             SimError::Off(e) => Some(e),
+            SimError::Model(e) => Some(e),
             SimError::Io { source, .. } | SimError::Thread(source) => Some(source),
             SimError::Png { source, .. } => Some(source),
             _ => None,
@@ -96,5 +101,11 @@ impl std::error::Error for SimError {
 impl From<OffError> for SimError {
     fn from(e: OffError) -> Self {
         SimError::Off(e)
+    }
+}
+
+impl From<ModelError> for SimError {
+    fn from(e: ModelError) -> Self {
+        SimError::Model(e)
     }
 }

@@ -28,6 +28,7 @@
 
 pub mod cli;
 pub mod error;
+pub mod model;
 pub mod off;
 pub mod png_io;
 pub mod render;

@@ -1,0 +1,912 @@
+//! Model files for model mode: OBJ (through `tobj`), STL (through `stl_io`, ASCII and binary)
+//! and OFF (through [`crate::off`]), loaded into one [`LoadedModel`].
+//!
+//! - **OBJ**: polygons are kept as they are (zrow draws convex polygons; one with more than
+//!   [`MAX_FACE_VERTICES`] vertices is split into a fan). A face takes the diffuse colour
+//!   (`Kd`) of its material when the MTL file next to the model gives one, else
+//!   [`DEFAULT_RGB`]. A missing or unreadable MTL file is not an error: the faces are drawn in
+//!   the default colour.
+//! - **STL**: every triangle in [`DEFAULT_RGB`]. Binary and ASCII are told apart by the size
+//!   the binary header promises, so a binary file whose header happens to start with `solid`
+//!   still loads.
+//! - **OFF** (GUIDE §2): face colours kept (white where a face has none).
+//!
+//! **Normalised**: in `f32`, before any conversion to a renderer's number format, the model is
+//! centred on the centre of its bounding box and scaled by `1 / (√3 · largest extent)`, so
+//! every coordinate lies in [−1/√3, 1/√3] and every vertex inside the unit sphere at the
+//! origin. A model of any size (millimetres or kilometres) thus needs the same camera, and
+//! fits Q16.16 with room to spare.
+//!
+//! **Errors**: every malformed file is a [`ModelError`] naming the file and where: the line
+//! (`FILE:LINE: message`) for the text formats, the triangle and its byte offset for binary STL.
+//! `tobj`'s and `stl_io`'s own errors carry no position, so each text file is first checked
+//! line by line here (OBJ: `v` holds 3 finite numbers, `f` at least 3 indices that are 1-based
+//! or negative and refer to vertices already defined; ASCII STL: the `facet` / `outer loop` /
+//! `vertex` ×3 / `endloop` / `endfacet` structure). Nothing in here panics, whatever the bytes.
+
+use crate::error::SimError;
+use crate::off::{self, rgb8_to_rgb565};
+use core::fmt;
+use embedded_graphics::pixelcolor::Rgb565;
+use std::collections::HashMap;
+use std::path::Path;
+use zrow::raster::MAX_FACE_VERTICES;
+use zrow::{Face, Mesh, Scalar, Vec3};
+
+/// The colour of faces the file gives none for (STL, OBJ without material), 8-bit RGB.
+pub const DEFAULT_RGB: [u8; 3] = [200, 200, 200];
+
+/// Most vertices a model may have: zrow's faces index them with 16 bits.
+pub const MAX_VERTICES: usize = off::MAX_VERTICES;
+
+/// Where in its file a vertex or face came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Origin {
+    /// A 1-based line of a text file.
+    Line(usize),
+    /// A triangle of a binary STL file: its 0-based number and the byte offset it starts at.
+    Triangle {
+        /// 0-based triangle number.
+        index: usize,
+        /// Byte offset of its 50-byte record.
+        offset: u64,
+    },
+}
+
+impl fmt::Display for Origin {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Origin::Line(line) => write!(f, "{line}"),
+            Origin::Triangle { index, offset } => {
+                write!(f, "triangle {index} (byte offset {offset})")
+            }
+        }
+    }
+}
+
+/// A malformed or unusable model file: which file, where, what.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ModelError {
+    /// The file name, as given.
+    pub file: String,
+    /// Where in the file (`None`: the whole file is to blame).
+    pub at: Option<Origin>,
+    /// What is wrong and, where it helps, what to do.
+    pub message: String,
+}
+
+impl ModelError {
+    fn new(file: &str, at: Option<Origin>, message: impl Into<String>) -> Self {
+        ModelError {
+            file: file.to_owned(),
+            at,
+            message: message.into(),
+        }
+    }
+}
+
+impl fmt::Display for ModelError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.at {
+            Some(at) => write!(f, "{}:{at}: {}", self.file, self.message),
+            None => write!(f, "{}: {}", self.file, self.message),
+        }
+    }
+}
+
+impl std::error::Error for ModelError {}
+
+/// One face of a loaded model.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ModelFace {
+    /// Vertex indices, 3..=[`MAX_FACE_VERTICES`], counter-clockwise seen from outside.
+    pub indices: Vec<u16>,
+    /// Its colour.
+    pub color: Rgb565,
+    /// Where it came from, if known.
+    pub origin: Option<Origin>,
+}
+
+/// A model in memory, normalised into the unit sphere (see the module doc).
+#[derive(Clone, Debug, PartialEq)]
+pub struct LoadedModel {
+    /// The file name used in messages.
+    pub file: String,
+    /// Normalised vertex positions.
+    pub positions: Vec<[f32; 3]>,
+    /// Where each vertex came from, if known (same length as `positions`).
+    pub vertex_origins: Vec<Option<Origin>>,
+    /// Faces, in file order.
+    pub faces: Vec<ModelFace>,
+    /// The normalisation: `normalised = (original − centre) · scale`.
+    pub centre: [f32; 3],
+    /// See `centre`.
+    pub scale: f32,
+}
+
+impl LoadedModel {
+    /// Calls `f` with the model as a zrow [`Mesh`] in number format `N`. Errors when a
+    /// position does not fit `N`, naming the vertex's line (or triangle).
+    pub fn with_mesh<N: Scalar, R>(
+        &self,
+        f: impl FnOnce(&Mesh<'_, N>) -> R,
+    ) -> Result<R, SimError> {
+        let mut vertices = Vec::with_capacity(self.positions.len());
+        for (k, &p) in self.positions.iter().enumerate() {
+            let v = Vec3::<N>::from_f32(p).ok_or_else(|| {
+                ModelError::new(
+                    &self.file,
+                    self.vertex_origins.get(k).copied().flatten(),
+                    format!(
+                        "vertex {k} ({}, {}, {}) does not fit the {} number format",
+                        p[0],
+                        p[1],
+                        p[2],
+                        N::NAME
+                    ),
+                )
+            })?;
+            vertices.push(v);
+        }
+        let faces: Vec<Face<'_>> = self
+            .faces
+            .iter()
+            .map(|face| Face {
+                indices: &face.indices,
+                color: face.color,
+            })
+            .collect();
+        Ok(f(&Mesh {
+            vertices: &vertices,
+            faces: &faces,
+        }))
+    }
+
+    /// Where face number `face` (0-based, as zrow's errors count) came from.
+    pub fn face_origin(&self, face: u32) -> Option<Origin> {
+        self.faces.get(face as usize).and_then(|f| f.origin)
+    }
+}
+
+/// The formats [`load`] reads, by file extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ModelFormat {
+    /// Wavefront OBJ (`.obj`), with its MTL.
+    Obj,
+    /// STL (`.stl`), ASCII or binary.
+    Stl,
+    /// OFF (`.off`).
+    Off,
+}
+
+impl ModelFormat {
+    /// The format of `path`, by its extension (any case).
+    pub fn of(path: &Path) -> Option<Self> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "obj" => Some(ModelFormat::Obj),
+            "stl" => Some(ModelFormat::Stl),
+            "off" => Some(ModelFormat::Off),
+            _ => None,
+        }
+    }
+}
+
+/// Loads the model at `path` (format by extension: `.obj`, `.stl`, `.off`) and normalises
+/// it into the unit sphere.
+pub fn load(path: &Path) -> Result<LoadedModel, SimError> {
+    let file = path.display().to_string();
+    let format = ModelFormat::of(path).ok_or_else(|| {
+        ModelError::new(
+            &file,
+            None,
+            "unknown model format: expected a file ending in .obj, .stl or .off",
+        )
+    })?;
+    let data = std::fs::read(path).map_err(|source| SimError::Io {
+        path: file.clone(),
+        action: "read",
+        source,
+    })?;
+    let dir = path.parent().unwrap_or(Path::new("."));
+    match format {
+        ModelFormat::Obj => Ok(parse_obj(&file, &data, dir)?),
+        ModelFormat::Stl => Ok(parse_stl(&file, &data)?),
+        ModelFormat::Off => parse_off(&file, &data),
+    }
+}
+
+/// A model before normalisation.
+struct Raw {
+    positions: Vec<[f32; 3]>,
+    origins: Vec<Option<Origin>>,
+    faces: Vec<ModelFace>,
+}
+
+/// Checks counts, normalises.
+fn finish(file: &str, raw: Raw) -> Result<LoadedModel, ModelError> {
+    if raw.faces.is_empty() {
+        return Err(ModelError::new(file, None, "the model has no faces"));
+    }
+    if raw.positions.len() > MAX_VERTICES {
+        return Err(ModelError::new(
+            file,
+            None,
+            format!(
+                "the model has {} vertices, at most {MAX_VERTICES} supported (16-bit indices): \
+                 simplify it",
+                raw.positions.len()
+            ),
+        ));
+    }
+    // Bounding box in f64, so that extreme f32 values cannot overflow.
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in &raw.positions {
+        for a in 0..3 {
+            lo[a] = lo[a].min(p[a] as f64);
+            hi[a] = hi[a].max(p[a] as f64);
+        }
+    }
+    let centre: [f64; 3] = core::array::from_fn(|a| (lo[a] + hi[a]) * 0.5);
+    let extent = (0..3).map(|a| hi[a] - lo[a]).fold(0.0, f64::max);
+    if !(extent > 0.0 && extent.is_finite()) {
+        return Err(ModelError::new(
+            file,
+            None,
+            "the model has zero size (all its vertices are one point)",
+        ));
+    }
+    let scale = 1.0 / (3f64.sqrt() * extent);
+    let positions = raw
+        .positions
+        .iter()
+        .map(|p| core::array::from_fn(|a| ((p[a] as f64 - centre[a]) * scale) as f32))
+        .collect();
+    Ok(LoadedModel {
+        file: file.to_owned(),
+        positions,
+        vertex_origins: raw.origins,
+        faces: raw.faces,
+        centre: centre.map(|c| c as f32),
+        scale: scale as f32,
+    })
+}
+
+// ---------------------------------------------------------------------------------------------
+// OFF
+
+fn parse_off(file: &str, data: &[u8]) -> Result<LoadedModel, SimError> {
+    let scene = off::parse(file, data)?;
+    let raw = Raw {
+        positions: scene.vertices.iter().map(|v| v.position).collect(),
+        origins: scene
+            .vertices
+            .iter()
+            .map(|v| Some(Origin::Line(v.line)))
+            .collect(),
+        faces: scene
+            .faces
+            .iter()
+            .map(|f| ModelFace {
+                indices: f.indices.clone(),
+                color: f.rgb565(),
+                origin: Some(Origin::Line(f.line)),
+            })
+            .collect(),
+    };
+    Ok(finish(file, raw)?)
+}
+
+// ---------------------------------------------------------------------------------------------
+// Text helpers
+
+/// A token as quoted in a message: escaped to stay on one line, cut to 32 characters.
+fn shown(token: &str) -> String {
+    let mut s: String = token
+        .chars()
+        .take(32)
+        .flat_map(char::escape_debug)
+        .collect();
+    if token.chars().count() > 32 {
+        s.push('…');
+    }
+    s
+}
+
+/// The lines of a text file with their 1-based numbers, comments (`#`) cut and tokens split;
+/// `Err(line)` for a line that is not UTF-8.
+fn text_lines(data: &[u8]) -> impl Iterator<Item = (usize, Result<Vec<&str>, ()>)> {
+    let data = data.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(data);
+    data.split(|&b| b == b'\n').enumerate().map(|(k, raw)| {
+        let text = raw.split(|&b| b == b'#').next().unwrap_or(raw);
+        let tokens = std::str::from_utf8(text)
+            .map(|t| t.split_ascii_whitespace().collect())
+            .map_err(|_| ());
+        (k + 1, tokens)
+    })
+}
+
+/// Parses a finite `f32`, or says why not.
+fn finite(what: &str, token: &str) -> Result<f32, String> {
+    match token.parse::<f32>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        Ok(_) => Err(format!(
+            "{what} `{}` is not finite (or too large for f32)",
+            shown(token)
+        )),
+        Err(_) => Err(format!("{what} `{}` is not a number", shown(token))),
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// OBJ
+
+/// What the line-by-line check of an OBJ file found: every `v` with its line, every `f` line.
+struct ObjCheck {
+    vertices: Vec<(usize, [f32; 3])>,
+    face_lines: Vec<usize>,
+}
+
+/// Resolves one OBJ index (1-based, or negative from the end) against `count` elements
+/// defined so far.
+fn obj_index(what: &str, token: &str, count: usize) -> Result<usize, String> {
+    let i: i64 = token
+        .parse()
+        .map_err(|_| format!("{what} index `{}` is not an integer", shown(token)))?;
+    let resolved = if i > 0 {
+        i - 1
+    } else if i < 0 {
+        count as i64 + i
+    } else {
+        return Err(format!(
+            "{what} index 0: OBJ indices start at 1 (or count back from -1)"
+        ));
+    };
+    if resolved < 0 || resolved >= count as i64 {
+        return Err(format!(
+            "{what} index {i} out of range ({count} {what}s defined before this line)"
+        ));
+    }
+    Ok(resolved as usize)
+}
+
+fn check_obj(file: &str, data: &[u8]) -> Result<ObjCheck, ModelError> {
+    let mut check = ObjCheck {
+        vertices: Vec::new(),
+        face_lines: Vec::new(),
+    };
+    let (mut texcoords, mut normals) = (0usize, 0usize);
+    for (line, tokens) in text_lines(data) {
+        let at = Some(Origin::Line(line));
+        let err = |m: String| ModelError::new(file, at, m);
+        let tokens = tokens.map_err(|_| err("line is not valid UTF-8".into()))?;
+        let Some((&key, args)) = tokens.split_first() else {
+            continue;
+        };
+        match key {
+            "v" => {
+                if !(3..=7).contains(&args.len()) {
+                    return Err(err(format!(
+                        "vertex needs 3 coordinates `v x y z`, found {} values",
+                        args.len()
+                    )));
+                }
+                let mut p = [0f32; 3];
+                for (k, t) in args.iter().enumerate() {
+                    let what = ["vertex x", "vertex y", "vertex z"]
+                        .get(k)
+                        .unwrap_or(&"vertex value");
+                    let v = finite(what, t).map_err(err)?;
+                    if let Some(slot) = p.get_mut(k) {
+                        *slot = v;
+                    }
+                }
+                check.vertices.push((line, p));
+            }
+            "vt" | "vn" => {
+                let what = if key == "vt" {
+                    "texture coordinate"
+                } else {
+                    "normal"
+                };
+                if args.is_empty() || args.len() > 4 {
+                    return Err(err(format!("{what} needs 1 to 3 values")));
+                }
+                for t in args {
+                    finite(what, t).map_err(err)?;
+                }
+                if key == "vt" {
+                    texcoords += 1;
+                } else {
+                    normals += 1;
+                }
+            }
+            "f" => {
+                if args.len() < 3 {
+                    return Err(err(format!(
+                        "face has {} vertices, need at least 3",
+                        args.len()
+                    )));
+                }
+                for t in args {
+                    let mut parts = t.split('/');
+                    let v = parts.next().unwrap_or("");
+                    obj_index("vertex", v, check.vertices.len()).map_err(err)?;
+                    if let Some(vt) = parts.next().filter(|s| !s.is_empty()) {
+                        obj_index("texture coordinate", vt, texcoords).map_err(err)?;
+                    }
+                    if let Some(vn) = parts.next().filter(|s| !s.is_empty()) {
+                        obj_index("normal", vn, normals).map_err(err)?;
+                    }
+                    if parts.next().is_some() {
+                        return Err(err(format!(
+                            "face vertex `{}` has more than `v/vt/vn`",
+                            shown(t)
+                        )));
+                    }
+                }
+                check.face_lines.push(line);
+            }
+            _ => {}
+        }
+    }
+    Ok(check)
+}
+
+fn parse_obj(file: &str, data: &[u8], dir: &Path) -> Result<LoadedModel, ModelError> {
+    let check = check_obj(file, data)?;
+    #[allow(clippy::needless_update)] // more fields exist under tobj's optional features
+    let options = tobj::LoadOptions {
+        triangulate: false,
+        single_index: false,
+        ignore_points: true,
+        ignore_lines: true,
+        ..Default::default()
+    };
+    let (models, materials) =
+        tobj::load_obj_buf(&mut std::io::Cursor::new(data), &options, |mtl| {
+            tobj::load_mtl(dir.join(mtl))
+        })
+        .map_err(|e| ModelError::new(file, None, format!("cannot read OBJ: {e}")))?;
+    let materials = materials.unwrap_or_default();
+
+    // Vertex lines by exact position (tobj re-indexes per object).
+    let mut line_of: HashMap<[u32; 3], usize> = HashMap::new();
+    for &(line, p) in &check.vertices {
+        line_of.entry(p.map(f32::to_bits)).or_insert(line);
+    }
+    let default = rgb8_to_rgb565(DEFAULT_RGB);
+    let mut raw = Raw {
+        positions: Vec::new(),
+        origins: Vec::new(),
+        faces: Vec::new(),
+    };
+    let mut obj_face = 0usize; // faces as the file has them, to find their lines
+    let tobj_faces: usize = models
+        .iter()
+        .map(|m| match m.mesh.face_arities.len() {
+            0 => m.mesh.indices.len() / 3,
+            n => n,
+        })
+        .sum();
+    let lines_known = tobj_faces == check.face_lines.len();
+    for model in &models {
+        let mesh = &model.mesh;
+        let base = raw.positions.len();
+        for p in mesh.positions.chunks_exact(3) {
+            let p = [p[0], p[1], p[2]];
+            raw.positions.push(p);
+            raw.origins
+                .push(line_of.get(&p.map(f32::to_bits)).map(|&l| Origin::Line(l)));
+        }
+        if raw.positions.len() > MAX_VERTICES {
+            break; // `finish` reports it
+        }
+        let color = mesh
+            .material_id
+            .and_then(|m| materials.get(m))
+            .and_then(|m| m.diffuse)
+            .map_or(default, |kd| {
+                rgb8_to_rgb565(kd.map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8))
+            });
+        let arities: Vec<usize> = if mesh.face_arities.is_empty() {
+            vec![3; mesh.indices.len() / 3]
+        } else {
+            mesh.face_arities.iter().map(|&a| a as usize).collect()
+        };
+        let mut next = 0usize;
+        for arity in arities {
+            let origin = lines_known
+                .then(|| check.face_lines.get(obj_face).map(|&l| Origin::Line(l)))
+                .flatten();
+            obj_face += 1;
+            let Some(ids) = mesh.indices.get(next..next + arity) else {
+                return Err(ModelError::new(file, origin, "face indices missing"));
+            };
+            next += arity;
+            let mut indices = Vec::with_capacity(arity);
+            for &i in ids {
+                let i = base + i as usize;
+                if i >= raw.positions.len() {
+                    return Err(ModelError::new(file, origin, "vertex index out of range"));
+                }
+                indices.push(i.min(u16::MAX as usize) as u16);
+            }
+            // A polygon beyond zrow's limit becomes a fan of polygons within it.
+            if indices.len() <= MAX_FACE_VERTICES {
+                raw.faces.push(ModelFace {
+                    indices,
+                    color,
+                    origin,
+                });
+            } else {
+                let mut start = 1;
+                while start + 1 < indices.len() {
+                    let end = (start + MAX_FACE_VERTICES - 1).min(indices.len());
+                    let mut part = vec![indices[0]];
+                    part.extend_from_slice(&indices[start..end]);
+                    raw.faces.push(ModelFace {
+                        indices: part,
+                        color,
+                        origin,
+                    });
+                    start = end - 1;
+                }
+            }
+        }
+    }
+    finish(file, raw)
+}
+
+// ---------------------------------------------------------------------------------------------
+// STL
+
+/// Size of a binary STL's header plus its triangle count.
+const STL_HEADER: usize = 84;
+/// Size of one binary STL triangle record.
+const STL_RECORD: usize = 50;
+
+fn parse_stl(file: &str, data: &[u8]) -> Result<LoadedModel, ModelError> {
+    let declared = data
+        .get(80..84)
+        .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize);
+    let binary_size = declared.map(|n| STL_HEADER as u64 + STL_RECORD as u64 * n as u64);
+    let looks_ascii = data.trim_ascii_start().starts_with(b"solid");
+    let is_binary = match binary_size {
+        Some(size) if size == data.len() as u64 => true,
+        _ => !looks_ascii,
+    };
+    let (triangles, origins) = if is_binary {
+        read_binary_stl(file, data)?
+    } else {
+        read_ascii_stl(file, data)?
+    };
+    let default = rgb8_to_rgb565(DEFAULT_RGB);
+    // Share vertices that are bit-identical.
+    let mut index_of: HashMap<[u32; 3], u16> = HashMap::new();
+    let mut raw = Raw {
+        positions: Vec::new(),
+        origins: Vec::new(),
+        faces: Vec::new(),
+    };
+    for (t, (tri, origin)) in triangles.iter().zip(&origins).enumerate() {
+        let mut indices = Vec::with_capacity(3);
+        for (k, v) in tri.iter().enumerate() {
+            let key = v.map(f32::to_bits);
+            let i = match index_of.get(&key) {
+                Some(&i) => i,
+                None => {
+                    if raw.positions.len() >= MAX_VERTICES {
+                        return Err(ModelError::new(
+                            file,
+                            None,
+                            format!(
+                                "the model has more than {MAX_VERTICES} distinct vertices (16-bit \
+                                 indices; reached at triangle {t}): simplify it"
+                            ),
+                        ));
+                    }
+                    let i = raw.positions.len() as u16;
+                    index_of.insert(key, i);
+                    raw.positions.push(*v);
+                    raw.origins.push(origin.vertex(k));
+                    i
+                }
+            };
+            indices.push(i);
+        }
+        raw.faces.push(ModelFace {
+            indices,
+            color: default,
+            origin: Some(origin.face()),
+        });
+    }
+    finish(file, raw)
+}
+
+/// Where an STL triangle and its three vertices came from.
+#[derive(Clone, Copy, Debug)]
+enum StlOrigin {
+    /// ASCII: the `facet` line and the three `vertex` lines.
+    Lines { facet: usize, vertices: [usize; 3] },
+    /// Binary: the record.
+    Record { index: usize, offset: u64 },
+}
+
+impl StlOrigin {
+    fn face(self) -> Origin {
+        match self {
+            StlOrigin::Lines { facet, .. } => Origin::Line(facet),
+            StlOrigin::Record { index, offset } => Origin::Triangle { index, offset },
+        }
+    }
+    fn vertex(self, k: usize) -> Option<Origin> {
+        Some(match self {
+            StlOrigin::Lines { vertices, .. } => Origin::Line(*vertices.get(k)?),
+            StlOrigin::Record { .. } => self.face(),
+        })
+    }
+}
+
+type StlTriangles = (Vec<[[f32; 3]; 3]>, Vec<StlOrigin>);
+
+/// Reads the triangles with `stl_io` from `data` (already checked, so it fails only on
+/// something the check missed).
+fn stl_io_triangles(file: &str, data: &[u8]) -> Result<Vec<[[f32; 3]; 3]>, ModelError> {
+    let mut cursor = std::io::Cursor::new(data);
+    let reader = stl_io::create_stl_reader(&mut cursor)
+        .map_err(|e| ModelError::new(file, None, format!("cannot read STL: {e}")))?;
+    reader
+        .map(|t| {
+            t.map(|t| t.vertices.map(|v| v.0))
+                .map_err(|e| ModelError::new(file, None, format!("cannot read STL: {e}")))
+        })
+        .collect()
+}
+
+fn read_binary_stl(file: &str, data: &[u8]) -> Result<StlTriangles, ModelError> {
+    let err = |at, m: String| ModelError::new(file, at, m);
+    if data.len() < STL_HEADER {
+        return Err(err(
+            None,
+            format!(
+                "truncated binary STL: {} bytes, but the header and triangle count alone take \
+                 {STL_HEADER} (an ASCII STL starts with `solid`)",
+                data.len()
+            ),
+        ));
+    }
+    let n = u32::from_le_bytes([data[80], data[81], data[82], data[83]]) as usize;
+    let need = STL_HEADER as u64 + STL_RECORD as u64 * n as u64;
+    if (data.len() as u64) < need {
+        let whole = (data.len() - STL_HEADER) / STL_RECORD;
+        let offset = (STL_HEADER + whole * STL_RECORD) as u64;
+        return Err(err(
+            Some(Origin::Triangle {
+                index: whole,
+                offset,
+            }),
+            format!(
+                "truncated binary STL: the header declares {n} triangles ({need} bytes) but the \
+                 file has {} bytes; this triangle is cut short",
+                data.len()
+            ),
+        ));
+    }
+    let mut origins = Vec::with_capacity(n.min(1 << 20));
+    for index in 0..n {
+        let offset = STL_HEADER + index * STL_RECORD;
+        let record = &data[offset..offset + STL_RECORD];
+        let origin = Origin::Triangle {
+            index,
+            offset: offset as u64,
+        };
+        for (k, b) in record[12..48].chunks_exact(4).enumerate() {
+            let v = f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+            if !v.is_finite() {
+                return Err(err(
+                    Some(origin),
+                    format!(
+                        "vertex {} {} is not finite",
+                        k / 3 + 1,
+                        ["x", "y", "z"][k % 3]
+                    ),
+                ));
+            }
+        }
+        origins.push(StlOrigin::Record {
+            index,
+            offset: offset as u64,
+        });
+    }
+    // stl_io takes a file starting with `solid ` for ASCII; the binary header is free text,
+    // so blank it out for stl_io when it would mislead it.
+    let mut copy;
+    let mut bytes = data;
+    if bytes.starts_with(b"solid") {
+        copy = data.to_vec();
+        copy[..5].copy_from_slice(b"     ");
+        bytes = &copy;
+    }
+    let triangles = stl_io_triangles(file, &bytes[..need as usize])?;
+    Ok((triangles, origins))
+}
+
+fn read_ascii_stl(file: &str, data: &[u8]) -> Result<StlTriangles, ModelError> {
+    #[derive(Clone, Copy, PartialEq)]
+    enum Want {
+        Solid,
+        FacetOrEnd,
+        OuterLoop,
+        Vertex(usize),
+        EndLoop,
+        EndFacet,
+        Nothing,
+    }
+    let mut want = Want::Solid;
+    let mut origins = Vec::new();
+    let mut facet = 0usize;
+    let mut vertices = [0usize; 3];
+    let mut last = 1;
+    // For stl_io: the file with comments dropped and a name after `solid`.
+    let mut clean = String::with_capacity(data.len());
+    for (line, tokens) in text_lines(data) {
+        last = line;
+        let at = Some(Origin::Line(line));
+        let err = |m: String| ModelError::new(file, at, m);
+        let tokens = tokens.map_err(|_| err("line is not valid UTF-8".into()))?;
+        if tokens.is_empty() {
+            continue;
+        }
+        let expected = |what: &str| {
+            err(format!(
+                "expected `{what}`, found `{}`",
+                shown(&tokens.join(" "))
+            ))
+        };
+        let numbers = |what: &str, args: &[&str]| -> Result<(), ModelError> {
+            if args.len() != 3 {
+                return Err(err(format!(
+                    "{what} needs 3 numbers, found {} values",
+                    args.len()
+                )));
+            }
+            for (t, axis) in args.iter().zip(["x", "y", "z"]) {
+                finite(&format!("{what} {axis}"), t).map_err(err)?;
+            }
+            Ok(())
+        };
+        want = match (want, tokens[0]) {
+            (Want::Solid, "solid") => {
+                clean.push_str("solid model\n");
+                Want::FacetOrEnd
+            }
+            (Want::Solid, _) => return Err(expected("solid NAME")),
+            (Want::FacetOrEnd, "facet") => {
+                if tokens.get(1) != Some(&"normal") {
+                    return Err(expected("facet normal NX NY NZ"));
+                }
+                numbers("facet normal", &tokens[2..])?;
+                facet = line;
+                Want::OuterLoop
+            }
+            (Want::FacetOrEnd, "endsolid") => Want::Nothing,
+            (Want::FacetOrEnd, _) => return Err(expected("facet normal NX NY NZ` or `endsolid")),
+            (Want::OuterLoop, _) if tokens == ["outer", "loop"] => Want::Vertex(0),
+            (Want::OuterLoop, _) => return Err(expected("outer loop")),
+            (Want::Vertex(k), "vertex") => {
+                numbers("vertex", &tokens[1..])?;
+                vertices[k] = line;
+                if k == 2 {
+                    Want::EndLoop
+                } else {
+                    Want::Vertex(k + 1)
+                }
+            }
+            (Want::Vertex(_), _) => {
+                return Err(expected(
+                    "vertex X Y Z` (a facet has exactly 3 vertices in STL",
+                ))
+            }
+            (Want::EndLoop, _) if tokens == ["endloop"] => Want::EndFacet,
+            (Want::EndLoop, _) => return Err(expected("endloop` (a facet has exactly 3 vertices")),
+            (Want::EndFacet, _) if tokens == ["endfacet"] => {
+                origins.push(StlOrigin::Lines { facet, vertices });
+                Want::FacetOrEnd
+            }
+            (Want::EndFacet, _) => return Err(expected("endfacet")),
+            (Want::Nothing, _) => {
+                return Err(err(
+                    "unexpected content after `endsolid` (one solid per file)".into(),
+                ))
+            }
+        };
+        if tokens[0] != "solid" {
+            clean.push_str(&tokens.join(" "));
+            clean.push('\n');
+        }
+    }
+    if want != Want::Nothing {
+        let what = match want {
+            Want::Solid => "`solid NAME`",
+            Want::FacetOrEnd => "`facet normal` or `endsolid`",
+            Want::OuterLoop => "`outer loop`",
+            Want::Vertex(_) => "`vertex X Y Z`",
+            Want::EndLoop => "`endloop`",
+            _ => "`endfacet`",
+        };
+        return Err(ModelError::new(
+            file,
+            Some(Origin::Line(last)),
+            format!("unexpected end of file: expected {what}"),
+        ));
+    }
+    let triangles = stl_io_triangles(file, clean.as_bytes())?;
+    if triangles.len() != origins.len() {
+        return Err(ModelError::new(
+            file,
+            None,
+            "cannot read STL: stl_io and the line check disagree on the triangle count",
+        ));
+    }
+    Ok((triangles, origins))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn obj(text: &str) -> Result<LoadedModel, String> {
+        parse_obj("t.obj", text.as_bytes(), Path::new(".")).map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn obj_quads_stay_quads_and_negative_indices_work() {
+        let m = obj("v 0 0 0\nv 2 0 0\nv 2 2 0\nv 0 2 0\nf 1 2 3 4\nf -4 -2 -1\n").unwrap();
+        assert_eq!(m.faces.len(), 2);
+        assert_eq!(m.faces[0].indices.len(), 4);
+        assert_eq!(m.faces[1].origin, Some(Origin::Line(6)));
+        assert_eq!(m.vertex_origins[2], Some(Origin::Line(3)));
+        // Centred and scaled by 1/(√3 · 2).
+        let s = 1.0 / (3f32.sqrt() * 2.0);
+        assert!((m.positions[0][0] + s).abs() < 1e-6, "{:?}", m.positions[0]);
+        assert!((m.positions[2][1] - s).abs() < 1e-6);
+    }
+
+    #[test]
+    fn big_polygons_become_fans() {
+        let mut text = String::new();
+        for k in 0..14 {
+            let a = k as f32 * std::f32::consts::TAU / 14.0;
+            text += &format!("v {} {} 0\n", a.cos(), a.sin());
+        }
+        text += "f";
+        for k in 1..=14 {
+            text += &format!(" {k}");
+        }
+        let m = obj(&text).unwrap();
+        assert_eq!(m.faces.len(), 2);
+        assert!(m.faces.iter().all(|f| f.indices.len() <= MAX_FACE_VERTICES));
+        let covered: usize = m.faces.iter().map(|f| f.indices.len() - 2).sum();
+        assert_eq!(covered, 12); // triangles in a fan of 14 vertices
+    }
+
+    #[test]
+    fn zero_size_and_empty_models_are_errors() {
+        assert_eq!(
+            obj("v 1 1 1\nf 1 1 1\n").unwrap_err(),
+            "t.obj: the model has zero size (all its vertices are one point)"
+        );
+        assert_eq!(
+            obj("v 1 1 1\n").unwrap_err(),
+            "t.obj: the model has no faces"
+        );
+    }
+
+    #[test]
+    fn huge_coordinates_normalise_without_overflow() {
+        let m = obj("v -3e38 0 0\nv 3e38 0 0\nv 0 3e38 0\nf 1 2 3\n").unwrap();
+        assert!(m.positions.iter().flatten().all(|c| c.abs() <= 0.578));
+    }
+}
