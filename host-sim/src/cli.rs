@@ -4,11 +4,20 @@
 //! zrow-sim render --screen SCENE.off --size 240x240 --algo scanline --out OUT.png
 //! ```
 //!
-//! Flags may come in any order, as `--flag value` or `--flag=value`. `--screen` and `--out`
-//! are required; `--size` defaults to 240x240 (the ST7789 panel), `--algo` to `scanline` and
+//! and model mode (OBJ, STL or OFF, seen by a camera orbiting the origin,
+//! [`crate::model_render`]):
+//!
+//! ```text
+//! zrow-sim render-model --model FILE [--yaw DEG] [--pitch DEG] [--distance D] [--size WxH]
+//!                       [--algo scanline] [--format q16.16|f32] --out OUT.png
+//! ```
+//!
+//! Flags may come in any order, as `--flag value` or `--flag=value`. `--screen` (`--model`) and
+//! `--out` are required; `--size` defaults to 240x240 (the ST7789 panel), `--algo` to `scanline` and
 //! `--format` to `q16.16`. A flag given twice, an unknown flag or a bad value is a usage error.
 
 use crate::error::SimError;
+use crate::model_render::View;
 use crate::render::{Algo, Format};
 use std::ffi::OsString;
 use std::path::PathBuf;
@@ -19,6 +28,8 @@ zrow-sim: render zrow scenes on the host
 
 usage:
   zrow-sim render --screen SCENE.off --out OUT.png [--size WxH] [--algo NAME] [--format FMT]
+  zrow-sim render-model --model FILE --out OUT.png [--yaw DEG] [--pitch DEG] [--distance D]
+                        [--size WxH] [--algo NAME] [--format FMT]
 
   --screen FILE   OFF scene in screen space (x right, y down in pixels, z depth, smaller nearer)
   --out FILE      PNG to write (8-bit RGB, exactly WxH, background black)
@@ -26,23 +37,39 @@ usage:
   --algo NAME     hidden-surface method: scanline (default scanline)
   --format FMT    number format: q16.16 or f32 (default q16.16)
 
+  --model FILE    OBJ (with its MTL colours), STL (ASCII or binary) or OFF model; it is scaled
+                  into the unit sphere at the origin, lit from the upper front right
+  --yaw DEG       camera angle about the vertical axis, 0 = from the front (default 30)
+  --pitch DEG     camera elevation, -89..=89 (default 20)
+  --distance D    camera distance from the origin, 0 < D < 20 (default 3)
+
 On bad input it prints one line `error: FILE:LINE: message` and exits non-zero.";
 
 /// Largest frame side (zrow's largest viewport).
 pub const MAX_SIDE: u16 = zrow::raster::MAX_VIEWPORT;
 
 /// What to do.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Command {
     /// Print [`USAGE`].
     Help,
-    /// Render a screen-space scene to a PNG.
+    /// Render to a PNG: `render` or `render-model` (one variant, so a front end dispatches
+    /// both with [`render`]).
     Render(RenderArgs),
+}
+
+/// What to render: the arguments of `render` or of `render-model`.
+#[derive(Clone, Debug, PartialEq)]
+pub enum RenderArgs {
+    /// `render`: a screen-space scene.
+    Screen(ScreenArgs),
+    /// `render-model`: a model seen by the orbiting camera.
+    Model(RenderModelArgs),
 }
 
 /// The arguments of `render`.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct RenderArgs {
+pub struct ScreenArgs {
     /// The OFF scene.
     pub screen: PathBuf,
     /// The PNG to write.
@@ -57,6 +84,25 @@ pub struct RenderArgs {
     pub format: Format,
 }
 
+/// The arguments of `render-model`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RenderModelArgs {
+    /// The model file (`.obj`, `.stl` or `.off`).
+    pub model: PathBuf,
+    /// The PNG to write.
+    pub out: PathBuf,
+    /// Frame width in pixels.
+    pub width: u16,
+    /// Frame height in pixels.
+    pub height: u16,
+    /// The method.
+    pub algo: Algo,
+    /// The number format.
+    pub format: Format,
+    /// Where the camera is.
+    pub view: View,
+}
+
 fn usage(msg: impl Into<String>) -> SimError {
     SimError::Usage(msg.into())
 }
@@ -68,25 +114,54 @@ pub fn parse_size(s: &str) -> Option<(u16, u16)> {
     Some((side(w)?, side(h)?))
 }
 
+/// The flags each command takes (as listed in messages).
+const RENDER_FLAGS: &[&str] = &["--screen", "--out", "--size", "--algo", "--format"];
+const RENDER_MODEL_FLAGS: &[&str] = &[
+    "--model",
+    "--out",
+    "--size",
+    "--algo",
+    "--format",
+    "--yaw",
+    "--pitch",
+    "--distance",
+];
+
+/// `a, b or c`.
+fn or_list(items: &[&str]) -> String {
+    match items {
+        [] => String::new(),
+        [one] => (*one).to_owned(),
+        [init @ .., last] => format!("{} or {last}", init.join(", ")),
+    }
+}
+
 /// Parses the arguments after the program name.
 pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, SimError> {
     let mut args = args.into_iter();
+    let expected = "expected `render` or `render-model`";
     let Some(cmd) = args.next() else {
-        return Err(usage("missing command: expected `render`"));
+        return Err(usage(format!("missing command: {expected}")));
     };
-    match cmd.to_str() {
-        Some("render") => {}
+    let (name, allowed) = match cmd.to_str() {
+        Some("render") => ("render", RENDER_FLAGS),
+        Some("render-model") => ("render-model", RENDER_MODEL_FLAGS),
         Some("-h" | "--help" | "help") => return Ok(Command::Help),
         Some(other) => {
             return Err(usage(format!(
-                "unknown command `{}`: expected `render`",
+                "unknown command `{}`: {expected}",
                 other.escape_debug()
             )))
         }
-        None => return Err(usage("command is not valid UTF-8: expected `render`")),
-    }
+        None => return Err(usage(format!("command is not valid UTF-8: {expected}"))),
+    };
 
-    let (mut screen, mut out, mut size, mut algo, mut format) = (None, None, None, None, None);
+    let mut paths: Vec<(&str, PathBuf)> = Vec::new();
+    let mut size = None;
+    let mut algo = None;
+    let mut format = None;
+    let mut view = View::default();
+    let mut angles: Vec<&str> = Vec::new();
     while let Some(arg) = args.next() {
         let text = arg
             .to_str()
@@ -99,16 +174,13 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
             Some((flag, value)) if flag.starts_with("--") => (flag, Some(OsString::from(value))),
             _ => (text, None),
         };
-        if !matches!(
-            flag,
-            "--screen" | "--out" | "--size" | "--algo" | "--format"
-        ) {
+        let Some(&flag) = allowed.iter().find(|&&f| f == flag) else {
             return Err(usage(format!(
-                "unknown argument `{}`: expected --screen, --out, --size, --algo or --format",
-                flag.escape_debug()
+                "unknown argument `{}`: expected {}",
+                flag.escape_debug(),
+                or_list(allowed)
             )));
-        }
-        let flag = flag.to_owned();
+        };
         let value = match value.or_else(|| args.next()) {
             Some(v) => v,
             None => return Err(usage(format!("{flag} needs a value"))),
@@ -119,9 +191,12 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
                 .map(str::to_owned)
                 .ok_or_else(|| usage(format!("{flag} value is not valid UTF-8")))
         };
-        let slot_taken = match flag.as_str() {
-            "--screen" => screen.replace(PathBuf::from(&value)).is_some(),
-            "--out" => out.replace(PathBuf::from(&value)).is_some(),
+        let slot_taken = match flag {
+            "--screen" | "--out" | "--model" => {
+                let taken = paths.iter().any(|(f, _)| *f == flag);
+                paths.push((flag, PathBuf::from(&value)));
+                taken
+            }
             "--size" => {
                 let v = text_value()?;
                 let parsed = parse_size(&v).ok_or_else(|| {
@@ -143,7 +218,7 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
                 })?;
                 algo.replace(parsed).is_some()
             }
-            _ => {
+            "--format" => {
                 let v = text_value()?;
                 let parsed = Format::from_name(&v).ok_or_else(|| {
                     usage(format!(
@@ -154,26 +229,79 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
                 })?;
                 format.replace(parsed).is_some()
             }
+            _ => {
+                // --yaw, --pitch, --distance
+                let v = text_value()?;
+                let parsed = v
+                    .parse::<f32>()
+                    .ok()
+                    .filter(|x| x.is_finite())
+                    .ok_or_else(|| {
+                        usage(format!(
+                            "bad {flag} `{}`: expected a number",
+                            v.escape_debug()
+                        ))
+                    })?;
+                match flag {
+                    "--yaw" => view.yaw_deg = parsed,
+                    "--pitch" => view.pitch_deg = parsed,
+                    _ => view.distance = parsed,
+                }
+                let taken = angles.contains(&flag);
+                angles.push(flag);
+                taken
+            }
         };
         if slot_taken {
             return Err(usage(format!("{flag} given twice")));
         }
     }
-    let screen = screen.ok_or_else(|| usage("render needs --screen SCENE.off"))?;
-    let out = out.ok_or_else(|| usage("render needs --out OUT.png"))?;
+    let path = |flag: &str| {
+        paths
+            .iter()
+            .find(|(f, _)| *f == flag)
+            .map(|(_, p)| p.clone())
+    };
+    let out = path("--out");
     let (width, height) = size.unwrap_or((240, 240));
-    Ok(Command::Render(RenderArgs {
-        screen,
+    let (algo, format) = (algo.unwrap_or(Algo::Scanline), format.unwrap_or_default());
+    if name == "render" {
+        let screen = path("--screen").ok_or_else(|| usage("render needs --screen SCENE.off"))?;
+        let out = out.ok_or_else(|| usage("render needs --out OUT.png"))?;
+        return Ok(Command::Render(RenderArgs::Screen(ScreenArgs {
+            screen,
+            out,
+            width,
+            height,
+            algo,
+            format,
+        })));
+    }
+    let model = path("--model").ok_or_else(|| usage("render-model needs --model FILE"))?;
+    let out = out.ok_or_else(|| usage("render-model needs --out OUT.png"))?;
+    view.validate()
+        .map_err(|m| usage(format!("bad view: {m}")))?;
+    Ok(Command::Render(RenderArgs::Model(RenderModelArgs {
+        model,
         out,
         width,
         height,
-        algo: algo.unwrap_or(Algo::Scanline),
-        format: format.unwrap_or_default(),
-    }))
+        algo,
+        format,
+        view,
+    })))
+}
+
+/// Runs `render` or `render-model`.
+pub fn render(args: &RenderArgs) -> Result<(), SimError> {
+    match args {
+        RenderArgs::Screen(a) => render_screen(a),
+        RenderArgs::Model(a) => render_model(a),
+    }
 }
 
 /// Runs `render`: reads and parses the scene, renders it, writes the PNG.
-pub fn render(args: &RenderArgs) -> Result<(), SimError> {
+pub fn render_screen(args: &ScreenArgs) -> Result<(), SimError> {
     let name = args.screen.display().to_string();
     let data = std::fs::read(&args.screen).map_err(|source| SimError::Io {
         path: name.clone(),
@@ -183,6 +311,20 @@ pub fn render(args: &RenderArgs) -> Result<(), SimError> {
     let scene = crate::off::parse(&name, &data)?;
     let image =
         crate::render::render_screen(&scene, args.width, args.height, args.algo, args.format)?;
+    crate::png_io::write(&image, &args.out)
+}
+
+/// Runs `render-model`: loads the model, renders the view, writes the PNG.
+pub fn render_model(args: &RenderModelArgs) -> Result<(), SimError> {
+    let model = crate::model::load(&args.model)?;
+    let image = crate::model_render::render_model_image(
+        &model,
+        &args.view,
+        args.width,
+        args.height,
+        args.algo,
+        args.format,
+    )?;
     crate::png_io::write(&image, &args.out)
 }
 
@@ -196,7 +338,7 @@ mod tests {
 
     #[test]
     fn flags_in_any_order_with_defaults() {
-        let want = RenderArgs {
+        let want = ScreenArgs {
             screen: "a.off".into(),
             out: "b.png".into(),
             width: 320,
@@ -214,9 +356,12 @@ mod tests {
             "--screen",
             "a.off",
         ];
-        assert_eq!(parse(&a).unwrap(), Command::Render(want.clone()));
+        assert_eq!(
+            parse(&a).unwrap(),
+            Command::Render(RenderArgs::Screen(want.clone()))
+        );
         let b = ["render", "--screen=a.off", "--out", "b.png"];
-        let Command::Render(got) = parse(&b).unwrap() else {
+        let Command::Render(RenderArgs::Screen(got)) = parse(&b).unwrap() else {
             panic!()
         };
         assert_eq!((got.width, got.height), (240, 240));
@@ -225,9 +370,62 @@ mod tests {
     }
 
     #[test]
+    fn render_model_flags_and_defaults() {
+        let a = [
+            "render-model",
+            "--out=m.png",
+            "--yaw",
+            "-45",
+            "--model",
+            "m.stl",
+            "--format",
+            "f32",
+        ];
+        let Command::Render(RenderArgs::Model(got)) = parse(&a).unwrap() else {
+            panic!()
+        };
+        assert_eq!(got.model, PathBuf::from("m.stl"));
+        assert_eq!(got.out, PathBuf::from("m.png"));
+        assert_eq!((got.width, got.height, got.format), (240, 240, Format::F32));
+        let want = View {
+            yaw_deg: -45.0,
+            ..View::default()
+        };
+        assert_eq!(got.view, want);
+    }
+
+    #[test]
     fn usage_errors_say_what_is_accepted() {
         let cases: &[(&[&str], &str)] = &[
             (&[], "missing command"),
+            (&["render", "--yaw", "3"], "unknown argument `--yaw`"),
+            (
+                &["render-model", "--screen", "a.off"],
+                "unknown argument `--screen`",
+            ),
+            (
+                &["render-model", "--out", "a.png"],
+                "render-model needs --model",
+            ),
+            (
+                &["render-model", "--model", "a.obj"],
+                "render-model needs --out",
+            ),
+            (
+                &[
+                    "render-model",
+                    "--model=a.obj",
+                    "--out=b.png",
+                    "--pitch",
+                    "95",
+                ],
+                "bad view: pitch 95",
+            ),
+            (&["render-model", "--yaw", "north"], "bad --yaw `north`"),
+            (
+                &["render-model", "--distance", "1", "--distance", "2"],
+                "--distance given twice",
+            ),
             (&["draw"], "unknown command `draw`"),
             (
                 &["render", "--algo", "zbuffer"],

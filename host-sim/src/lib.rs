@@ -29,6 +29,7 @@
 pub mod cli;
 pub mod error;
 pub mod model;
+pub mod model_render;
 pub mod off;
 pub mod png_io;
 pub mod render;

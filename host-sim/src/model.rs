@@ -11,11 +11,13 @@
 //!   still loads.
 //! - **OFF** (GUIDE §2): face colours kept (white where a face has none).
 //!
-//! **Normalised**: in `f32`, before any conversion to a renderer's number format, the model is
-//! centred on the centre of its bounding box and scaled by `1 / (√3 · largest extent)`, so
-//! every coordinate lies in [−1/√3, 1/√3] and every vertex inside the unit sphere at the
-//! origin. A model of any size (millimetres or kilometres) thus needs the same camera, and
-//! fits Q16.16 with room to spare.
+//! **Normalised**: in `f32` (computed in `f64`), before any conversion to a renderer's number
+//! format, the model is centred on the centre of its bounding box and scaled so that the box's
+//! half-diagonal is 1: every vertex lies inside the unit sphere at the origin, and a box-shaped
+//! model touches it at its corners. (The half-diagonal is `√3/2 ·` the largest extent for a
+//! cube and less for a flat model, which is thus not drawn needlessly small.) A model of any
+//! size, millimetres or kilometres, thus needs the same camera, and fits Q16.16 with room to
+//! spare.
 //!
 //! **Errors**: every malformed file is a [`ModelError`] naming the file and where: the line
 //! (`FILE:LINE: message`) for the text formats, the triangle and its byte offset for binary STL.
@@ -249,15 +251,15 @@ fn finish(file: &str, raw: Raw) -> Result<LoadedModel, ModelError> {
         }
     }
     let centre: [f64; 3] = core::array::from_fn(|a| (lo[a] + hi[a]) * 0.5);
-    let extent = (0..3).map(|a| hi[a] - lo[a]).fold(0.0, f64::max);
-    if !(extent > 0.0 && extent.is_finite()) {
+    let half_diagonal = 0.5 * (0..3).map(|a| (hi[a] - lo[a]).powi(2)).sum::<f64>().sqrt();
+    if !(half_diagonal > 0.0 && half_diagonal.is_finite()) {
         return Err(ModelError::new(
             file,
             None,
             "the model has zero size (all its vertices are one point)",
         ));
     }
-    let scale = 1.0 / (3f64.sqrt() * extent);
+    let scale = 1.0 / half_diagonal;
     let positions = raw
         .positions
         .iter()
@@ -868,8 +870,8 @@ mod tests {
         assert_eq!(m.faces[0].indices.len(), 4);
         assert_eq!(m.faces[1].origin, Some(Origin::Line(6)));
         assert_eq!(m.vertex_origins[2], Some(Origin::Line(3)));
-        // Centred and scaled by 1/(√3 · 2).
-        let s = 1.0 / (3f32.sqrt() * 2.0);
+        // Centred and scaled by 1 / half-diagonal = 1/√2.
+        let s = 1.0 / 2f32.sqrt();
         assert!((m.positions[0][0] + s).abs() < 1e-6, "{:?}", m.positions[0]);
         assert!((m.positions[2][1] - s).abs() < 1e-6);
     }
@@ -907,6 +909,9 @@ mod tests {
     #[test]
     fn huge_coordinates_normalise_without_overflow() {
         let m = obj("v -3e38 0 0\nv 3e38 0 0\nv 0 3e38 0\nf 1 2 3\n").unwrap();
-        assert!(m.positions.iter().flatten().all(|c| c.abs() <= 0.578));
+        assert!(m.positions.iter().all(|p| {
+            let r = p.iter().map(|c| c * c).sum::<f32>().sqrt();
+            r <= 1.0 + 1e-6
+        }));
     }
 }

@@ -15,7 +15,7 @@ use crate::error::SimError;
 use crate::off::OffScene;
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 use zrow::{Config, Face, FrameBuffer, Mesh, RenderError, Requirements, Scalar, Scanline};
-use zrow::{ScreenScene, Table, Q16_16};
+use zrow::{Scene, ScreenScene, Table, Q16_16};
 
 /// Widest frame the host renders (zrow's largest viewport).
 pub const HOST_WIDTH: usize = zrow::raster::MAX_VIEWPORT as usize;
@@ -204,7 +204,7 @@ fn core_error(scene: &OffScene, error: zrow::Error) -> SimError {
 }
 
 /// Checks measured requirements against the host capacities.
-fn check_capacity(req: &Requirements) -> Result<(), zrow::Error> {
+pub(crate) fn check_capacity(req: &Requirements) -> Result<(), zrow::Error> {
     for (table, needed, capacity) in [
         (Table::Polygons, req.polygons, HOST_POLYGONS),
         (Table::Edges, req.edges, HOST_EDGES),
@@ -233,7 +233,18 @@ fn scanline<N: Scalar + Send + Sync>(
     let faces = faces(scene);
     let screen = screen_scene(&vertices, &faces);
     let cfg = Config::screen(width, height);
+    draw(&screen, &cfg, |e| core_error(scene, e))
+}
 
+/// Draws `scene` with [`HostScanline`] into a new [`Image`], on a thread of its own (see the
+/// module doc); `blame` turns a zrow error into the caller's message. Measure and
+/// [`check_capacity`] first: this does not.
+pub(crate) fn draw<N: Scalar + Send + Sync, S: Scene<N> + Sync>(
+    scene: &S,
+    cfg: &Config,
+    blame: impl FnOnce(zrow::Error) -> SimError,
+) -> Result<Image, SimError> {
+    let (width, height) = (cfg.width, cfg.height);
     let mut pixels = vec![Rgb565::BLACK; width as usize * height as usize];
     let mut frame = FrameBuffer::new(&mut pixels, width as usize);
     // Room for the renderer, a copy or two of it that an unoptimised build makes while
@@ -245,14 +256,14 @@ fn scanline<N: Scalar + Send + Sync>(
             .stack_size(stack)
             .spawn_scoped(s, || {
                 let mut renderer = HostScanline::<N>::new();
-                renderer.render(&screen, &cfg, &mut frame).map(|_| ())
+                renderer.render(scene, cfg, &mut frame).map(|_| ())
             })
             .map_err(SimError::Thread)?;
         worker
             .join()
             .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
             .map_err(|e| match e {
-                RenderError::Scene(e) => core_error(scene, e),
+                RenderError::Scene(e) => blame(e),
                 RenderError::Sink(never) => match never {},
             })
     });

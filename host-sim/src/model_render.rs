@@ -1,0 +1,244 @@
+//! Model-mode rendering: a [`LoadedModel`] seen by a camera orbiting the origin, under one
+//! fixed light.
+//!
+//! The model is already normalised into the unit sphere ([`crate::model`]), so one camera
+//! setup suits every model: the eye sits `distance` from the origin at a [`View`]'s yaw and
+//! pitch and looks at the origin (y up), perspective with a [`FOV_Y_DEG`] vertical field of
+//! view, near plane [`NEAR`], far plane [`FAR`]. The light is directional and fixed in the
+//! world, coming from the upper front right ([`LIGHT_DIRECTION`]), with ambient [`AMBIENT`].
+//! Faces are flat shaded and back faces culled ([`zrow::Config::model`]).
+//!
+//! Rendering goes the same way as [`crate::render`]: [`zrow::requirements()`] measures the view
+//! first, a model that needs more than the host capacities is an error naming the capacity
+//! and what it needs, and the frame is drawn by [`crate::render::HostScanline`] on a thread of
+//! its own.
+
+use crate::error::SimError;
+use crate::model::{LoadedModel, ModelError};
+use crate::render::{check_capacity, draw, Algo, Format, Image};
+use zrow::{Affine, Camera, Config, Light, ModelScene, Object, Requirements, Scalar, Vec3};
+use zrow::{Scene, Q16_16};
+
+/// Vertical field of view, degrees.
+pub const FOV_Y_DEG: f32 = 60.0;
+/// Near plane distance.
+pub const NEAR: f32 = 0.1;
+/// Far plane distance.
+pub const FAR: f32 = 20.0;
+/// Direction towards the light in world space: up, towards the default eye, to the right.
+pub const LIGHT_DIRECTION: [f32; 3] = [0.6, 1.0, 0.8];
+/// Fraction of a face's colour that faces turned away from the light keep.
+pub const AMBIENT: f32 = 0.2;
+/// Largest pitch magnitude, degrees (the camera's up is +y, so it cannot look straight down).
+pub const MAX_PITCH_DEG: f32 = 89.0;
+
+/// Where the orbiting camera is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct View {
+    /// Rotation about the vertical axis, degrees: 0 looks from +z, 90 from +x.
+    pub yaw_deg: f32,
+    /// Elevation, degrees, in −[`MAX_PITCH_DEG`]..=[`MAX_PITCH_DEG`]: positive looks down
+    /// from above.
+    pub pitch_deg: f32,
+    /// Distance of the eye from the origin (the model fits the unit sphere), in
+    /// (0, [`FAR`]).
+    pub distance: f32,
+}
+
+impl Default for View {
+    /// Yaw 30°, pitch 20°, distance 3.
+    fn default() -> Self {
+        View {
+            yaw_deg: 30.0,
+            pitch_deg: 20.0,
+            distance: 3.0,
+        }
+    }
+}
+
+impl View {
+    /// The eye position.
+    pub fn eye(&self) -> [f32; 3] {
+        let (yaw, pitch) = (self.yaw_deg.to_radians(), self.pitch_deg.to_radians());
+        let d = self.distance;
+        [
+            d * pitch.cos() * yaw.sin(),
+            d * pitch.sin(),
+            d * pitch.cos() * yaw.cos(),
+        ]
+    }
+
+    /// Checks the ranges documented on the fields; the message says which is wrong.
+    pub fn validate(&self) -> Result<(), String> {
+        if !self.yaw_deg.is_finite() {
+            return Err(format!("yaw {} is not finite", self.yaw_deg));
+        }
+        if self.pitch_deg.is_nan() || self.pitch_deg.abs() > MAX_PITCH_DEG {
+            return Err(format!(
+                "pitch {} is outside -{MAX_PITCH_DEG}..={MAX_PITCH_DEG} degrees",
+                self.pitch_deg
+            ));
+        }
+        if self.distance.is_nan() || self.distance <= 0.0 || self.distance >= FAR {
+            return Err(format!(
+                "distance {} is outside the open interval (0, {FAR})",
+                self.distance
+            ));
+        }
+        Ok(())
+    }
+
+    /// The camera for this view in format `N` (`None`: a bad view, see [`View::validate`]).
+    pub fn camera<N: Scalar>(&self) -> Option<Camera<N>> {
+        self.validate().ok()?;
+        let projection = Camera::<N>::perspective(FOV_Y_DEG.to_radians(), NEAR, FAR)?;
+        Camera::look_at(self.eye(), [0.0; 3], [0.0, 1.0, 0.0], projection)
+    }
+}
+
+/// The model-mode light in format `N`.
+pub fn light<N: Scalar>() -> Light<N> {
+    Light {
+        direction: Vec3::from_f32(LIGHT_DIRECTION).unwrap_or_default(),
+        ambient: N::from_f32(AMBIENT).unwrap_or(N::ZERO),
+    }
+}
+
+/// Renders `model` from `view` at `width × height` pixels (each 1..=2048) with the chosen
+/// method and number format. This is the one call the command line and the simulator window
+/// share: it converts the model (errors name the vertex's line), measures the view against
+/// the host capacities, then draws on a render thread.
+///
+/// Errors: a bad view or size ([`SimError::Usage`]), a position that does not fit the format
+/// or a face zrow rejects ([`SimError::Model`], naming the line or triangle), a view that needs
+/// more than a host capacity ([`SimError::Scene`], naming the table and what it needs).
+pub fn render_model_image(
+    model: &LoadedModel,
+    view: &View,
+    width: u16,
+    height: u16,
+    algo: Algo,
+    format: Format,
+) -> Result<Image, SimError> {
+    match (algo, format) {
+        (Algo::Scanline, Format::Q16_16) => scanline::<Q16_16>(model, view, width, height),
+        (Algo::Scanline, Format::F32) => scanline::<f32>(model, view, width, height),
+    }
+}
+
+/// Measures what `model` needs from `view` at this size in format `N`.
+pub fn measure_model<N: Scalar>(
+    model: &LoadedModel,
+    view: &View,
+    width: u16,
+    height: u16,
+) -> Result<Requirements, SimError> {
+    with_scene::<N, _>(model, view, width, height, |scene, cfg| {
+        measure(model, scene, cfg)
+    })?
+}
+
+fn measure<N: Scalar>(
+    model: &LoadedModel,
+    scene: &dyn Scene<N>,
+    cfg: &Config,
+) -> Result<Requirements, SimError> {
+    let mut rows = vec![0u32; cfg.height as usize + 1];
+    zrow::requirements(scene, cfg, &mut rows).map_err(|e| blame(model, e))
+}
+
+/// Builds the scene and calls `f` with it.
+fn with_scene<N: Scalar, R>(
+    model: &LoadedModel,
+    view: &View,
+    width: u16,
+    height: u16,
+    f: impl FnOnce(&ModelScene<'_, N>, &Config) -> R,
+) -> Result<R, SimError> {
+    view.validate()
+        .map_err(|m| SimError::Usage(format!("bad view: {m}")))?;
+    let camera = view.camera::<N>().ok_or_else(|| {
+        SimError::Usage(format!(
+            "bad view: the camera does not fit the {} number format",
+            N::NAME
+        ))
+    })?;
+    let cfg = Config::model(width, height);
+    model.with_mesh::<N, _>(|mesh| {
+        let objects = [Object {
+            mesh,
+            transform: Affine::identity(),
+        }];
+        let scene = ModelScene {
+            objects: &objects,
+            camera,
+            light: light(),
+        };
+        f(&scene, &cfg)
+    })
+}
+
+fn scanline<N: Scalar + Send + Sync>(
+    model: &LoadedModel,
+    view: &View,
+    width: u16,
+    height: u16,
+) -> Result<Image, SimError> {
+    with_scene::<N, _>(model, view, width, height, |scene, cfg| {
+        let req = measure(model, scene, cfg)?;
+        check_capacity(&req).map_err(|e| blame(model, e))?;
+        draw(scene, cfg, |e| blame(model, e))
+    })?
+}
+
+/// A zrow error, blamed on the line (or triangle) of the face it names.
+fn blame(model: &LoadedModel, error: zrow::Error) -> SimError {
+    use zrow::Error::*;
+    match error {
+        IndexOutOfRange { face, .. }
+        | TooFewVertices { face }
+        | TooManyVertices { face }
+        | NonFinite { face }
+        | NotConvex { face } => SimError::Model(ModelError {
+            file: model.file.clone(),
+            at: model.face_origin(face),
+            message: error.to_string(),
+        }),
+        _ => SimError::Scene {
+            file: model.file.clone(),
+            line: None,
+            error,
+        },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_eye_is_front_right_above() {
+        let e = View::default().eye();
+        assert!(e[0] > 0.0 && e[1] > 0.0 && e[2] > 0.0, "{e:?}");
+        let len = (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt();
+        assert!((len - 3.0).abs() < 1e-5);
+    }
+
+    #[test]
+    fn bad_views_say_what_is_wrong() {
+        let bad = |v: View| v.validate().unwrap_err();
+        let v = View::default();
+        assert!(bad(View {
+            pitch_deg: 90.0,
+            ..v
+        })
+        .contains("pitch 90"));
+        assert!(bad(View { distance: 0.0, ..v }).contains("distance 0"));
+        assert!(bad(View {
+            yaw_deg: f32::NAN,
+            ..v
+        })
+        .contains("yaw"));
+        assert!(v.camera::<Q16_16>().is_some());
+    }
+}
