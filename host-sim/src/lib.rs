@@ -27,11 +27,14 @@
 #![deny(missing_docs)]
 
 pub mod cli;
+pub mod demo;
 pub mod error;
 pub mod model;
 pub mod model_render;
 pub mod off;
 pub mod png_io;
 pub mod render;
+#[cfg(feature = "window")]
+pub mod window;
 
 pub use error::SimError;

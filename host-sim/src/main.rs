@@ -5,13 +5,19 @@ use std::process::ExitCode;
 use zrow_sim::cli::{self, Command};
 
 fn main() -> ExitCode {
-    let result = cli::parse_args(std::env::args_os().skip(1)).and_then(|cmd| match cmd {
-        Command::Help => {
-            println!("{}", cli::USAGE);
-            Ok(())
-        }
-        Command::Render(args) => cli::render(&args),
-    });
+    let args: Vec<_> = std::env::args_os().skip(1).collect();
+    // `--demo` (or another demo flag): the demo window, or its PNG when there is none.
+    let result = if zrow_sim::demo::is_demo(&args) {
+        zrow_sim::demo::run(&args)
+    } else {
+        cli::parse_args(args).and_then(|cmd| match cmd {
+            Command::Help => {
+                println!("{}", cli::USAGE);
+                Ok(())
+            }
+            Command::Render(args) => cli::render(&args),
+        })
+    };
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

@@ -1,0 +1,501 @@
+//! The demo the simulator window shows, and its headless fallback.
+//!
+//! The scenes are zrow-scenes' [`DEMOS`](zrow_scenes::DEMOS) (`interlocked`: two rings linked
+//! through each other and a cube piercing both, turning, so the visible surfaces change every
+//! frame; then `cube` and `mesh1k`). Every frame goes through the same core as the board:
+//! [`zrow::Scanline`] sends its rows through [`zrow::DrawTargetSink`] into an embedded-graphics
+//! display (the simulator's, here). The top [`STATUS_ROWS`] rows are then overdrawn with a
+//! status line: method, number format, scene, render time on this host, polygons drawn and the
+//! renderer's RAM ([`Scanline::RAM_BYTES`] of the instantiation in use).
+//!
+//! Everything here works without SDL: [`first_frame`] and [`write_png`] give the frame the
+//! window opens on as a PNG. The window itself is `crate::window` (feature `window`).
+
+use crate::error::SimError;
+use crate::render::{Algo, Format};
+use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
+use embedded_graphics::pixelcolor::Rgb565;
+use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::{PrimitiveStyle, Rectangle};
+use embedded_graphics::text::{Baseline, Text};
+use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
+use std::ffi::OsString;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+use zrow::{Cull, DrawTargetSink, FrameStats, RenderError, Scanline, Q16_16};
+
+/// Frame side in pixels (the ST7789 panel).
+pub const SIZE: u32 = zrow_scenes::SIZE as u32;
+/// The window shows each frame pixel as `SCALE × SCALE` screen pixels.
+pub const SCALE: u32 = 2;
+/// Rows at the top that the status line covers (two lines of the 6×10 font).
+pub const STATUS_ROWS: u32 = 22;
+/// Radians the scene turns per frame.
+pub const STEP: f32 = 0.03;
+/// The window's title.
+pub const TITLE: &str = "zrow-sim demo";
+/// The PNG the default command writes when there is no window.
+pub const FALLBACK_PNG: &str = "zrow-demo.png";
+
+/// Polygon-table capacity of the demo renderer (the demos need at most 1,000, `mesh1k` with
+/// culling off).
+pub const DEMO_POLYGONS: usize = 2048;
+/// Edge-table capacity of the demo renderer.
+pub const DEMO_EDGES: usize = 8192;
+/// Active-list capacity of the demo renderer.
+pub const DEMO_ACTIVE: usize = 1024;
+
+/// The demo's renderer: 240-pixel rows and the capacities above (checked against every demo
+/// scene, turned, in both formats, culled or not, by a test).
+pub type DemoScanline<N> = Scanline<N, { SIZE as usize }, DEMO_POLYGONS, DEMO_EDGES, DEMO_ACTIVE>;
+
+/// What the window shows: method, format, scene, culling, angle, pause.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct View {
+    /// Index into [`Algo::ALL`].
+    pub method: usize,
+    /// Number format.
+    pub format: Format,
+    /// Index into [`zrow_scenes::DEMOS`].
+    pub scene: usize,
+    /// Back-face culling on.
+    pub cull: bool,
+    /// The scene's turn, radians.
+    pub angle: f32,
+    /// Frozen (only single steps move it).
+    pub paused: bool,
+}
+
+impl Default for View {
+    fn default() -> Self {
+        View {
+            method: 0,
+            format: Format::Q16_16,
+            scene: 0,
+            cull: true,
+            angle: 0.0,
+            paused: false,
+        }
+    }
+}
+
+/// What a key asks for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Action {
+    /// `m`: the next method of [`Algo::ALL`].
+    NextMethod,
+    /// `f`: Q16.16 ↔ f32.
+    ToggleFormat,
+    /// Space: pause or resume.
+    TogglePause,
+    /// `s` or Right: one step (pauses).
+    Step,
+    /// `n`: the next demo scene.
+    NextScene,
+    /// `c`: back-face culling on or off.
+    ToggleCull,
+    /// Escape or `q`.
+    Quit,
+}
+
+impl View {
+    /// The method shown.
+    pub fn algo(&self) -> Algo {
+        Algo::ALL[self.method % Algo::ALL.len()].1
+    }
+
+    /// The scene shown.
+    pub fn scene_name(&self) -> &'static str {
+        zrow_scenes::DEMOS[self.scene % zrow_scenes::DEMOS.len()]
+    }
+
+    /// Applies a key's action (`Quit` is the caller's).
+    pub fn apply(&mut self, action: Action) {
+        match action {
+            Action::NextMethod => self.method = (self.method + 1) % Algo::ALL.len(),
+            Action::ToggleFormat => {
+                self.format = match self.format {
+                    Format::Q16_16 => Format::F32,
+                    Format::F32 => Format::Q16_16,
+                }
+            }
+            Action::TogglePause => self.paused = !self.paused,
+            Action::Step => {
+                self.paused = true;
+                self.advance();
+            }
+            Action::NextScene => self.scene = (self.scene + 1) % zrow_scenes::DEMOS.len(),
+            Action::ToggleCull => self.cull = !self.cull,
+            Action::Quit => {}
+        }
+    }
+
+    /// Turns the scene one step.
+    pub fn advance(&mut self) {
+        self.angle = (self.angle + STEP) % std::f32::consts::TAU;
+    }
+}
+
+/// The two renderers (one per format), boxed: their tables are too big for comfort on a stack.
+pub struct Renderers {
+    q16: Box<DemoScanline<Q16_16>>,
+    f32: Box<DemoScanline<f32>>,
+}
+
+impl Default for Renderers {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Renderers {
+    /// Both renderers, empty.
+    pub fn new() -> Self {
+        Renderers {
+            q16: Box::new(DemoScanline::new()),
+            f32: Box::new(DemoScanline::new()),
+        }
+    }
+
+    /// RAM of the renderer that draws in `format` ([`Scanline::RAM_BYTES`]).
+    pub fn ram_bytes(format: Format) -> usize {
+        match format {
+            Format::Q16_16 => DemoScanline::<Q16_16>::RAM_BYTES,
+            Format::F32 => DemoScanline::<f32>::RAM_BYTES,
+        }
+    }
+}
+
+/// One rendered frame: how long it took and what it drew, or why it drew nothing.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    /// Wall time of the render on this host, rows into the display included.
+    pub time: Duration,
+    /// The frame's statistics, or the error (one line).
+    pub result: Result<FrameStats, String>,
+}
+
+/// Renders `view` into `display` (its top-left 240×240). Never panics: a scene or capacity
+/// error is returned in [`Frame::result`] and leaves the display as it was (zrow fails before
+/// the first row).
+pub fn render<D>(renderers: &mut Renderers, view: &View, display: &mut D) -> Frame
+where
+    D: DrawTarget<Color = Rgb565>,
+    D::Error: core::fmt::Debug,
+{
+    match (view.algo(), view.format) {
+        (Algo::Scanline, Format::Q16_16) => render_with(&mut renderers.q16, view, display),
+        (Algo::Scanline, Format::F32) => render_with(&mut renderers.f32, view, display),
+    }
+}
+
+fn render_with<N, D, const W: usize, const P: usize, const E: usize, const A: usize>(
+    renderer: &mut Scanline<N, W, P, E, A>,
+    view: &View,
+    display: &mut D,
+) -> Frame
+where
+    N: zrow_scenes::Format,
+    D: DrawTarget<Color = Rgb565>,
+    D::Error: core::fmt::Debug,
+{
+    let name = view.scene_name();
+    let start = Instant::now();
+    let out = zrow_scenes::with_scene::<N, _>(name, view.angle, |scene, cfg, _faces| {
+        let mut cfg = *cfg;
+        cfg.cull = if view.cull { Cull::Back } else { Cull::None };
+        renderer.render(scene, &cfg, &mut DrawTargetSink(display))
+    });
+    let time = start.elapsed();
+    let result = match out {
+        None => Err(format!("{name} does not fit {}", view.format.name())),
+        Some(Ok(stats)) => Ok(stats),
+        Some(Err(RenderError::Scene(e))) => Err(e.to_string()),
+        Some(Err(RenderError::Sink(e))) => Err(format!("display: {e:?}")),
+    };
+    Frame { time, result }
+}
+
+/// The two status lines (each at most 40 characters, the width of the 6×10 font).
+pub fn status_text(view: &View, frame: &Frame, time: Duration) -> [String; 2] {
+    let mut first = format!(
+        "{} {} {}{}",
+        view.algo().name(),
+        view.format.name(),
+        view.scene_name(),
+        if view.cull { "" } else { " nocull" },
+    );
+    if view.paused {
+        first += " [paused]";
+    }
+    let second = match &frame.result {
+        Ok(stats) => {
+            let us = time.as_micros();
+            let t = if us < 10_000 {
+                format!("{us}us")
+            } else {
+                format!("{:.1}ms", us as f64 / 1000.0)
+            };
+            format!(
+                "{t} {} polys RAM {}K",
+                stats.polygons,
+                Renderers::ram_bytes(view.format).div_ceil(1024)
+            )
+        }
+        Err(e) => format!("error: {e}"),
+    };
+    [first, second].map(|s| s.chars().take(40).collect())
+}
+
+/// Draws the status line over the top [`STATUS_ROWS`] rows. `time` is the render time to show
+/// (the window shows a running average).
+pub fn draw_status<D>(display: &mut D, view: &View, frame: &Frame, time: Duration)
+where
+    D: DrawTarget<Color = Rgb565>,
+{
+    let bar = Rectangle::new(Point::zero(), Size::new(SIZE, STATUS_ROWS));
+    // Drawing into the simulator cannot fail; a driver's error here only loses the status.
+    let _ = bar
+        .into_styled(PrimitiveStyle::with_fill(Rgb565::new(2, 4, 4)))
+        .draw(display);
+    let colour = if frame.result.is_ok() {
+        Rgb565::new(31, 58, 8)
+    } else {
+        Rgb565::new(31, 16, 12)
+    };
+    let style = MonoTextStyle::new(&FONT_6X10, colour);
+    for (i, line) in status_text(view, frame, time).iter().enumerate() {
+        let at = Point::new(1, 1 + 10 * i as i32);
+        let _ = Text::with_baseline(line, at, style, Baseline::Top).draw(display);
+    }
+}
+
+/// A blank 240×240 simulator display.
+pub fn new_display() -> SimulatorDisplay<Rgb565> {
+    SimulatorDisplay::new(Size::new(SIZE, SIZE))
+}
+
+/// The frame the window opens on (first scene, angle 0), status line included, with the
+/// pause flag shown as given.
+pub fn first_frame(paused: bool) -> SimulatorDisplay<Rgb565> {
+    let mut display = new_display();
+    let view = View {
+        paused,
+        ..View::default()
+    };
+    let mut renderers = Renderers::new();
+    let frame = render(&mut renderers, &view, &mut display);
+    draw_status(&mut display, &view, &frame, frame.time);
+    display
+}
+
+/// Writes `display` as a PNG, each pixel `scale × scale` (the simulator's output image).
+pub fn write_png(
+    display: &SimulatorDisplay<Rgb565>,
+    path: &Path,
+    scale: u32,
+) -> Result<(), SimError> {
+    let settings = OutputSettingsBuilder::new().scale(scale).build();
+    display
+        .to_rgb_output_image(&settings)
+        .save_png(path)
+        .map_err(|e| SimError::Io {
+            path: path.display().to_string(),
+            action: "write",
+            source: std::io::Error::other(e),
+        })
+}
+
+/// Options of the demo (`zrow-sim --demo`).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct DemoArgs {
+    /// `--paused`: open frozen on the first frame.
+    pub paused: bool,
+    /// `--dump-expected FILE`: write the first (paused) frame as the window shows it (2×) and
+    /// exit, without opening a window.
+    pub dump_expected: Option<PathBuf>,
+    /// `--frames N`: quit after N window updates.
+    pub frames: Option<u64>,
+}
+
+/// The demo's flags, for [`is_demo`] and messages (`--demo` alone: the demo as it starts).
+pub const FLAGS: [&str; 4] = ["--demo", "--paused", "--dump-expected", "--frames"];
+
+/// Whether the arguments (after the program name) are the demo's: they start with one of
+/// [`FLAGS`]. (Without arguments the command line is still a usage error, as
+/// `host-sim/tests/cli.rs` expects.)
+pub fn is_demo(args: &[OsString]) -> bool {
+    args.first().is_some_and(|a| {
+        a.to_str()
+            .is_some_and(|a| FLAGS.contains(&a.split_once('=').map_or(a, |(f, _)| f)))
+    })
+}
+
+/// Parses the demo's flags.
+pub fn parse_args(args: &[OsString]) -> Result<DemoArgs, SimError> {
+    let usage = |m: String| SimError::Usage(m);
+    let mut out = DemoArgs::default();
+    let mut it = args.iter();
+    while let Some(arg) = it.next() {
+        let text = arg
+            .to_str()
+            .ok_or_else(|| usage("argument is not valid UTF-8".into()))?;
+        let (flag, inline) = match text.split_once('=') {
+            Some((f, v)) => (f, Some(OsString::from(v))),
+            None => (text, None),
+        };
+        let mut value = || {
+            inline
+                .clone()
+                .or_else(|| it.next().cloned())
+                .ok_or_else(|| usage(format!("{flag} needs a value")))
+        };
+        match flag {
+            "--demo" if inline.is_none() => {}
+            "--paused" if inline.is_none() => out.paused = true,
+            "--dump-expected" => out.dump_expected = Some(PathBuf::from(value()?)),
+            "--frames" => {
+                let v = value()?;
+                let n = v
+                    .to_str()
+                    .and_then(|v| v.parse().ok())
+                    .ok_or_else(|| usage(format!("bad --frames `{}`", v.to_string_lossy())))?;
+                out.frames = Some(n);
+            }
+            _ => {
+                return Err(usage(format!(
+                "unknown demo argument `{}`: expected --demo, --paused, --dump-expected FILE or --frames N",
+                text.escape_debug()
+            )))
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// `zrow-sim --demo`: the window when this build has one and a display is there, else one
+/// line saying so and [`FALLBACK_PNG`]. `EG_SIMULATOR_DUMP=FILE` dumps the first frame as the
+/// simulator does, `--dump-expected FILE` likewise without the environment.
+pub fn run(args: &[OsString]) -> Result<(), SimError> {
+    let args = parse_args(args)?;
+    if let Some(path) = &args.dump_expected {
+        return write_png(&first_frame(true), path, SCALE);
+    }
+    if std::env::var_os("EG_SIMULATOR_DUMP").is_some() {
+        // The simulator's own switch: it writes the PNG and exits the process.
+        let settings = OutputSettingsBuilder::new().scale(SCALE).build();
+        let mut window = embedded_graphics_simulator::Window::new(TITLE, &settings);
+        window.update(&first_frame(args.paused));
+        return Ok(());
+    }
+    #[cfg(feature = "window")]
+    let why = match crate::window::run(&args) {
+        Ok(()) => return Ok(()),
+        Err(crate::window::NoWindow(why)) => format!(
+            "no window: {why}; wrote the first demo frame to {FALLBACK_PNG} instead \
+             (run from a desktop session, or under Xvfb, for the window)"
+        ),
+    };
+    #[cfg(not(feature = "window"))]
+    let why = format!(
+        "no window in this build: wrote the first demo frame to {FALLBACK_PNG}; for the window: \
+         sudo apt-get install -y libsdl2-dev && cargo run --release -p zrow-sim --features window -- --demo"
+    );
+    write_png(&first_frame(false), Path::new(FALLBACK_PNG), 1)?;
+    println!("zrow-sim: {why}");
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use embedded_graphics::pixelcolor::RgbColor;
+
+    #[test]
+    fn the_capacities_fit_every_demo_view() {
+        let mut rows = vec![0u32; SIZE as usize + 1];
+        for &name in &zrow_scenes::DEMOS {
+            for step in 0..64 {
+                let angle = step as f32 * std::f32::consts::TAU / 64.0;
+                for cull in [Cull::Back, Cull::None] {
+                    let req = zrow_scenes::with_scene::<Q16_16, _>(name, angle, |s, cfg, _| {
+                        let cfg = zrow::Config { cull, ..*cfg };
+                        zrow::requirements(s, &cfg, &mut rows).unwrap()
+                    })
+                    .unwrap();
+                    assert!(req.polygons as usize <= DEMO_POLYGONS, "{name} {req:?}");
+                    assert!(req.edges as usize <= DEMO_EDGES, "{name} {req:?}");
+                    assert!(
+                        req.active_polygons as usize <= DEMO_ACTIVE,
+                        "{name} {req:?}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn every_view_renders_and_the_status_fits() {
+        let mut renderers = Renderers::new();
+        let mut display = new_display();
+        let mut view = View::default();
+        for _ in 0..zrow_scenes::DEMOS.len() {
+            for _ in 0..2 {
+                for _ in 0..2 {
+                    let frame = render(&mut renderers, &view, &mut display);
+                    let stats = frame.result.clone().unwrap();
+                    assert!(stats.polygons > 0, "{view:?}");
+                    for line in status_text(&view, &frame, frame.time) {
+                        assert!(line.len() <= 40, "{line}");
+                    }
+                    view.apply(Action::ToggleCull);
+                }
+                view.apply(Action::ToggleFormat);
+            }
+            view.apply(Action::NextScene);
+        }
+        assert_eq!(view.scene, 0);
+        view.apply(Action::Step);
+        assert!(view.paused && view.angle == STEP);
+        view.apply(Action::NextMethod);
+        assert_eq!(view.algo(), Algo::Scanline);
+    }
+
+    #[test]
+    fn the_first_frame_is_drawn_below_the_status_line() {
+        let display = first_frame(true);
+        let lit = (STATUS_ROWS as i32..SIZE as i32)
+            .flat_map(|y| (0..SIZE as i32).map(move |x| Point::new(x, y)))
+            .filter(|&p| display.get_pixel(p) != Rgb565::BLACK)
+            .count();
+        assert!(lit > 5_000, "only {lit} pixels drawn");
+        let frame = Frame {
+            time: Duration::from_micros(1234),
+            result: Err("polygon table holds 2 but this scene needs 9".into()),
+        };
+        let [_, second] = status_text(&View::default(), &frame, frame.time);
+        assert!(second.starts_with("error: polygon table"), "{second}");
+    }
+
+    #[test]
+    fn demo_arguments() {
+        let os = |v: &[&str]| v.iter().map(OsString::from).collect::<Vec<_>>();
+        assert!(!is_demo(&os(&[])));
+        assert!(is_demo(&os(&["--demo"])));
+        assert!(is_demo(&os(&["--paused"])));
+        assert!(is_demo(&os(&["--dump-expected=x.png"])));
+        assert!(!is_demo(&os(&["render"])));
+        assert!(!is_demo(&os(&["--model", "a.obj"])));
+        let a = parse_args(&os(&["--paused", "--dump-expected", "e.png", "--frames=3"])).unwrap();
+        assert_eq!(
+            a,
+            DemoArgs {
+                paused: true,
+                dump_expected: Some("e.png".into()),
+                frames: Some(3)
+            }
+        );
+        assert!(parse_args(&os(&["--frames", "x"])).is_err());
+        assert!(parse_args(&os(&["--dump-expected"])).is_err());
+    }
+}
