@@ -1,8 +1,8 @@
 //! The simulator window (feature `window`, needs SDL2: `apt-get install libsdl2-dev`).
 //!
-//! Shows [`crate::demo`] at 240×240, scaled 2×. Keys: `m` next method, `f` Q16.16 ↔ f32,
-//! space pause, `s` or Right one step (pauses), `n` next scene, `c` back-face culling on/off,
-//! Escape or `q` quit.
+//! `zrow-sim --demo [--paused]` shows [`crate::demo`] at 240×240, scaled 2×. Keys: `m` next
+//! method, `f` Q16.16 ↔ f32, space pause, `s` or Right one step (pauses), `n` next scene, `c`
+//! back-face culling on/off, Escape or `q` quit.
 //!
 //! SDL is asked first whether it can open a display ([`NoWindow`] if not), because the
 //! simulator panics when it cannot.
