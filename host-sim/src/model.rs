@@ -367,7 +367,7 @@ fn obj_index(what: &str, token: &str, count: usize) -> Result<usize, String> {
     };
     if resolved < 0 || resolved >= count as i64 {
         return Err(format!(
-            "{what} index {i} out of range ({count} {what}s defined before this line)"
+            "{what} index {i} out of range: {count} defined before this line"
         ));
     }
     Ok(resolved as usize)
@@ -484,6 +484,7 @@ fn parse_obj(file: &str, data: &[u8], dir: &Path) -> Result<LoadedModel, ModelEr
         origins: Vec::new(),
         faces: Vec::new(),
     };
+    let mut index_of: HashMap<[u32; 3], usize> = HashMap::new();
     let mut obj_face = 0usize; // faces as the file has them, to find their lines
     let tobj_faces: usize = models
         .iter()
@@ -495,12 +496,18 @@ fn parse_obj(file: &str, data: &[u8], dir: &Path) -> Result<LoadedModel, ModelEr
     let lines_known = tobj_faces == check.face_lines.len();
     for model in &models {
         let mesh = &model.mesh;
-        let base = raw.positions.len();
+        // tobj numbers vertices per object: share them again across objects.
+        let mut local = Vec::with_capacity(mesh.positions.len() / 3);
         for p in mesh.positions.chunks_exact(3) {
             let p = [p[0], p[1], p[2]];
-            raw.positions.push(p);
-            raw.origins
-                .push(line_of.get(&p.map(f32::to_bits)).map(|&l| Origin::Line(l)));
+            let key = p.map(f32::to_bits);
+            let i = *index_of.entry(key).or_insert_with(|| {
+                raw.positions.push(p);
+                raw.origins
+                    .push(line_of.get(&key).map(|&l| Origin::Line(l)));
+                raw.positions.len() - 1
+            });
+            local.push(i);
         }
         if raw.positions.len() > MAX_VERTICES {
             break; // `finish` reports it
@@ -529,10 +536,9 @@ fn parse_obj(file: &str, data: &[u8], dir: &Path) -> Result<LoadedModel, ModelEr
             next += arity;
             let mut indices = Vec::with_capacity(arity);
             for &i in ids {
-                let i = base + i as usize;
-                if i >= raw.positions.len() {
+                let Some(&i) = local.get(i as usize) else {
                     return Err(ModelError::new(file, origin, "vertex index out of range"));
-                }
+                };
                 indices.push(i.min(u16::MAX as usize) as u16);
             }
             // A polygon beyond zrow's limit becomes a fan of polygons within it.
@@ -754,13 +760,13 @@ fn read_ascii_stl(file: &str, data: &[u8]) -> Result<StlTriangles, ModelError> {
     // For stl_io: the file with comments dropped and a name after `solid`.
     let mut clean = String::with_capacity(data.len());
     for (line, tokens) in text_lines(data) {
-        last = line;
         let at = Some(Origin::Line(line));
         let err = |m: String| ModelError::new(file, at, m);
         let tokens = tokens.map_err(|_| err("line is not valid UTF-8".into()))?;
         if tokens.is_empty() {
             continue;
         }
+        last = line;
         let expected = |what: &str| {
             err(format!(
                 "expected `{what}`, found `{}`",
