@@ -15,6 +15,11 @@
 //!    renders it with the chosen method and number format into an [`render::Image`];
 //! 4. [`png_io`] writes the PNG.
 //!
+//! Model mode (`zrow-sim render-model --model FILE …`) goes the same way with [`model`] loading
+//! an OBJ, STL or OFF model into the unit sphere and [`model_render`] drawing it from an
+//! orbiting camera under a fixed light ([`model_render::render_model_image`], which the
+//! window shares).
+//!
 //! Every failure is a [`SimError`] that prints on one line.
 //!
 //! ```

@@ -211,10 +211,21 @@ pub fn load(path: &Path) -> Result<LoadedModel, SimError> {
         source,
     })?;
     let dir = path.parent().unwrap_or(Path::new("."));
+    parse(&file, format, &data, dir)
+}
+
+/// Parses a model from memory: `file` names it in errors, `dir` is where an OBJ's MTL files
+/// are looked for. [`load`] without the file system.
+pub fn parse(
+    file: &str,
+    format: ModelFormat,
+    data: &[u8],
+    dir: &Path,
+) -> Result<LoadedModel, SimError> {
     match format {
-        ModelFormat::Obj => Ok(parse_obj(&file, &data, dir)?),
-        ModelFormat::Stl => Ok(parse_stl(&file, &data)?),
-        ModelFormat::Off => parse_off(&file, &data),
+        ModelFormat::Obj => Ok(parse_obj(file, data, dir)?),
+        ModelFormat::Stl => Ok(parse_stl(file, data)?),
+        ModelFormat::Off => parse_off(file, data),
     }
 }
 
