@@ -109,9 +109,22 @@ pub fn light<N: Scalar>() -> Light<N> {
 /// share: it converts the model (errors name the vertex's line), measures the view against
 /// the host capacities, then draws on a render thread.
 ///
-/// Errors: a bad view or size ([`SimError::Usage`]), a position that does not fit the format
-/// or a face zrow rejects ([`SimError::Model`], naming the line or triangle), a view that needs
-/// more than a host capacity ([`SimError::Scene`], naming the table and what it needs).
+/// Errors: a bad view ([`SimError::Usage`], see [`View::validate`]), a position that does not
+/// fit the format or a face zrow rejects ([`SimError::Model`], naming the line or triangle), a
+/// view that needs more than a host capacity or a size outside 1..=2048 ([`SimError::Scene`]
+/// with zrow's [`zrow::Error::Capacity`], naming the table and what it needs, or
+/// [`zrow::Error::BadConfig`]).
+///
+/// ```
+/// use zrow_sim::model::{parse, ModelFormat};
+/// use zrow_sim::model_render::{render_model_image, View};
+/// use zrow_sim::render::{Algo, Format};
+/// let obj = b"v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n"; // faces the default camera
+/// let model = parse("tri.obj", ModelFormat::Obj, obj, ".".as_ref()).unwrap();
+/// let image =
+///     render_model_image(&model, &View::default(), 32, 32, Algo::Scanline, Format::Q16_16).unwrap();
+/// assert_ne!(image.to_rgb8()[3 * (16 * 32 + 16)], 0); // the centre is lit
+/// ```
 pub fn render_model_image(
     model: &LoadedModel,
     view: &View,
