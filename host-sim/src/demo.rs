@@ -8,10 +8,15 @@
 //! status line: method, number format, scene, render time on this host, polygons drawn and the
 //! renderer's RAM ([`Scanline::RAM_BYTES`] of the instantiation in use).
 //!
+//! `--model FILE` (OBJ, STL or OFF, see [`crate::model`]) puts the model first: the camera
+//! orbits it under the fixed light of [`crate::model_render`], at the demo's turning angle.
+//!
 //! Everything here works without SDL: [`first_frame`] and [`write_png`] give the frame the
 //! window opens on as a PNG. The window itself is `crate::window` (feature `window`).
 
 use crate::error::SimError;
+use crate::model::LoadedModel;
+use crate::model_render;
 use crate::render::{Algo, Format};
 use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
 use embedded_graphics::pixelcolor::Rgb565;
@@ -22,7 +27,9 @@ use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
-use zrow::{Cull, DrawTargetSink, FrameStats, RenderError, Scanline, Q16_16};
+use zrow::{
+    Affine, Cull, DrawTargetSink, FrameStats, ModelScene, Object, RenderError, Scanline, Q16_16,
+};
 
 /// Frame side in pixels (the ST7789 panel).
 pub const SIZE: u32 = zrow_scenes::SIZE as u32;
@@ -56,8 +63,10 @@ pub struct View {
     pub method: usize,
     /// Number format.
     pub format: Format,
-    /// Index into [`zrow_scenes::DEMOS`].
+    /// Which scene: with a model, 0 is the model and `k + 1` is `DEMOS[k]`; else `DEMOS[k]`.
     pub scene: usize,
+    /// A model was loaded (`--model`): it is scene 0.
+    pub has_model: bool,
     /// Back-face culling on.
     pub cull: bool,
     /// The scene's turn, radians.
@@ -72,6 +81,7 @@ impl Default for View {
             method: 0,
             format: Format::Q16_16,
             scene: 0,
+            has_model: false,
             cull: true,
             angle: 0.0,
             paused: false,
@@ -104,9 +114,23 @@ impl View {
         Algo::ALL[self.method % Algo::ALL.len()].1
     }
 
-    /// The scene shown.
+    /// How many scenes there are to cycle through.
+    pub fn scene_count(&self) -> usize {
+        zrow_scenes::DEMOS.len() + self.has_model as usize
+    }
+
+    /// Whether the loaded model is shown.
+    pub fn shows_model(&self) -> bool {
+        self.has_model && self.scene % self.scene_count() == 0
+    }
+
+    /// The scene shown (`model` for the loaded model).
     pub fn scene_name(&self) -> &'static str {
-        zrow_scenes::DEMOS[self.scene % zrow_scenes::DEMOS.len()]
+        if self.shows_model() {
+            return "model";
+        }
+        let k = self.scene % self.scene_count() - self.has_model as usize;
+        zrow_scenes::DEMOS[k]
     }
 
     /// Applies a key's action (`Quit` is the caller's).
@@ -124,7 +148,7 @@ impl View {
                 self.paused = true;
                 self.advance();
             }
-            Action::NextScene => self.scene = (self.scene + 1) % zrow_scenes::DEMOS.len(),
+            Action::NextScene => self.scene = (self.scene + 1) % self.scene_count(),
             Action::ToggleCull => self.cull = !self.cull,
             Action::Quit => {}
         }
@@ -175,23 +199,29 @@ pub struct Frame {
     pub result: Result<FrameStats, String>,
 }
 
-/// Renders `view` into `display` (its top-left 240×240). Never panics: a scene or capacity
-/// error is returned in [`Frame::result`] and leaves the display as it was (zrow fails before
-/// the first row).
-pub fn render<D>(renderers: &mut Renderers, view: &View, display: &mut D) -> Frame
+/// Renders `view` into `display` (its top-left 240×240); `model` is the `--model` one, if
+/// any. Never panics: a scene or capacity error is returned in [`Frame::result`] and leaves
+/// the display as it was (zrow fails before the first row).
+pub fn render<D>(
+    renderers: &mut Renderers,
+    view: &View,
+    model: Option<&LoadedModel>,
+    display: &mut D,
+) -> Frame
 where
     D: DrawTarget<Color = Rgb565>,
     D::Error: core::fmt::Debug,
 {
     match (view.algo(), view.format) {
-        (Algo::Scanline, Format::Q16_16) => render_with(&mut renderers.q16, view, display),
-        (Algo::Scanline, Format::F32) => render_with(&mut renderers.f32, view, display),
+        (Algo::Scanline, Format::Q16_16) => render_with(&mut renderers.q16, view, model, display),
+        (Algo::Scanline, Format::F32) => render_with(&mut renderers.f32, view, model, display),
     }
 }
 
 fn render_with<N, D, const W: usize, const P: usize, const E: usize, const A: usize>(
     renderer: &mut Scanline<N, W, P, E, A>,
     view: &View,
+    model: Option<&LoadedModel>,
     display: &mut D,
 ) -> Frame
 where
@@ -201,11 +231,45 @@ where
 {
     let name = view.scene_name();
     let start = Instant::now();
-    let out = zrow_scenes::with_scene::<N, _>(name, view.angle, |scene, cfg, _faces| {
-        let mut cfg = *cfg;
-        cfg.cull = if view.cull { Cull::Back } else { Cull::None };
-        renderer.render(scene, &cfg, &mut DrawTargetSink(display))
-    });
+    let cull = if view.cull { Cull::Back } else { Cull::None };
+    let out = match model.filter(|_| view.shows_model()) {
+        // The camera orbits the model (turning by the demo's angle) under the fixed light.
+        Some(model) => {
+            let orbit = model_render::View {
+                yaw_deg: view.angle.to_degrees(),
+                ..model_render::View::default()
+            };
+            let mut cfg = zrow::Config::model(SIZE as u16, SIZE as u16);
+            cfg.cull = cull;
+            let drawn = model.with_mesh::<N, _>(|mesh| {
+                let camera = orbit.camera::<N>()?;
+                let objects = [Object {
+                    mesh,
+                    transform: Affine::identity(),
+                }];
+                let scene = ModelScene {
+                    objects: &objects,
+                    camera,
+                    light: model_render::light::<N>(),
+                };
+                Some(renderer.render(&scene, &cfg, &mut DrawTargetSink(&mut *display)))
+            });
+            match drawn {
+                Ok(out) => out,
+                Err(e) => {
+                    return Frame {
+                        time: start.elapsed(),
+                        result: Err(e.to_string()),
+                    }
+                }
+            }
+        }
+        None => zrow_scenes::with_scene::<N, _>(name, view.angle, |scene, cfg, _faces| {
+            let mut cfg = *cfg;
+            cfg.cull = cull;
+            renderer.render(scene, &cfg, &mut DrawTargetSink(&mut *display))
+        }),
+    };
     let time = start.elapsed();
     let result = match out {
         None => Err(format!("{name} does not fit {}", view.format.name())),
@@ -277,14 +341,15 @@ pub fn new_display() -> SimulatorDisplay<Rgb565> {
 
 /// The frame the window opens on (first scene, angle 0), status line included, with the
 /// pause flag shown as given.
-pub fn first_frame(paused: bool) -> SimulatorDisplay<Rgb565> {
+pub fn first_frame(paused: bool, model: Option<&LoadedModel>) -> SimulatorDisplay<Rgb565> {
     let mut display = new_display();
     let view = View {
         paused,
+        has_model: model.is_some(),
         ..View::default()
     };
     let mut renderers = Renderers::new();
-    let frame = render(&mut renderers, &view, &mut display);
+    let frame = render(&mut renderers, &view, model, &mut display);
     draw_status(&mut display, &view, &frame, frame.time);
     display
 }
@@ -316,16 +381,23 @@ pub struct DemoArgs {
     pub dump_expected: Option<PathBuf>,
     /// `--frames N`: quit after N window updates.
     pub frames: Option<u64>,
+    /// `--model FILE`: an OBJ, STL or OFF model to orbit (shown first).
+    pub model: Option<PathBuf>,
 }
 
 /// The demo's flags, for [`is_demo`] and messages (`--demo` alone: the demo as it starts).
-pub const FLAGS: [&str; 4] = ["--demo", "--paused", "--dump-expected", "--frames"];
+pub const FLAGS: [&str; 5] = [
+    "--demo",
+    "--paused",
+    "--dump-expected",
+    "--frames",
+    "--model",
+];
 
-/// Whether the arguments (after the program name) are the demo's: they start with one of
-/// [`FLAGS`]. (Without arguments the command line is still a usage error, as
-/// `host-sim/tests/cli.rs` expects.)
+/// Whether the arguments (after the program name) are the demo's: none, or starting with one
+/// of [`FLAGS`].
 pub fn is_demo(args: &[OsString]) -> bool {
-    args.first().is_some_and(|a| {
+    args.first().is_none_or(|a| {
         a.to_str()
             .is_some_and(|a| FLAGS.contains(&a.split_once('=').map_or(a, |(f, _)| f)))
     })
@@ -354,6 +426,7 @@ pub fn parse_args(args: &[OsString]) -> Result<DemoArgs, SimError> {
             "--demo" if inline.is_none() => {}
             "--paused" if inline.is_none() => out.paused = true,
             "--dump-expected" => out.dump_expected = Some(PathBuf::from(value()?)),
+            "--model" => out.model = Some(PathBuf::from(value()?)),
             "--frames" => {
                 let v = value()?;
                 let n = v
@@ -364,7 +437,7 @@ pub fn parse_args(args: &[OsString]) -> Result<DemoArgs, SimError> {
             }
             _ => {
                 return Err(usage(format!(
-                "unknown demo argument `{}`: expected --demo, --paused, --dump-expected FILE or --frames N",
+                "unknown demo argument `{}`: expected --demo, --model FILE, --paused, --dump-expected FILE or --frames N",
                 text.escape_debug()
             )))
             }
@@ -378,18 +451,21 @@ pub fn parse_args(args: &[OsString]) -> Result<DemoArgs, SimError> {
 /// simulator does, `--dump-expected FILE` likewise without the environment.
 pub fn run(args: &[OsString]) -> Result<(), SimError> {
     let args = parse_args(args)?;
+    // A model that does not load is an error (file and line), before any window opens.
+    let model = args.model.as_deref().map(crate::model::load).transpose()?;
+    let model = model.as_ref();
     if let Some(path) = &args.dump_expected {
-        return write_png(&first_frame(true), path, SCALE);
+        return write_png(&first_frame(true, model), path, SCALE);
     }
     if std::env::var_os("EG_SIMULATOR_DUMP").is_some() {
         // The simulator's own switch: it writes the PNG and exits the process.
         let settings = OutputSettingsBuilder::new().scale(SCALE).build();
         let mut window = embedded_graphics_simulator::Window::new(TITLE, &settings);
-        window.update(&first_frame(args.paused));
+        window.update(&first_frame(args.paused, model));
         return Ok(());
     }
     #[cfg(feature = "window")]
-    let why = match crate::window::run(&args) {
+    let why = match crate::window::run(&args, model) {
         Ok(()) => return Ok(()),
         Err(crate::window::NoWindow(why)) => format!(
             "no window: {why}; wrote the first demo frame to {FALLBACK_PNG} instead \
@@ -399,9 +475,9 @@ pub fn run(args: &[OsString]) -> Result<(), SimError> {
     #[cfg(not(feature = "window"))]
     let why = format!(
         "no window in this build: wrote the first demo frame to {FALLBACK_PNG}; for the window: \
-         sudo apt-get install -y libsdl2-dev && cargo run --release -p zrow-sim --features window -- --demo"
+         sudo apt-get install -y libsdl2-dev && cargo run --release -p zrow-sim --features window"
     );
-    write_png(&first_frame(false), Path::new(FALLBACK_PNG), 1)?;
+    write_png(&first_frame(false, model), Path::new(FALLBACK_PNG), 1)?;
     println!("zrow-sim: {why}");
     Ok(())
 }
@@ -442,7 +518,7 @@ mod tests {
         for _ in 0..zrow_scenes::DEMOS.len() {
             for _ in 0..2 {
                 for _ in 0..2 {
-                    let frame = render(&mut renderers, &view, &mut display);
+                    let frame = render(&mut renderers, &view, None, &mut display);
                     let stats = frame.result.clone().unwrap();
                     assert!(stats.polygons > 0, "{view:?}");
                     for line in status_text(&view, &frame, frame.time) {
@@ -463,7 +539,7 @@ mod tests {
 
     #[test]
     fn the_first_frame_is_drawn_below_the_status_line() {
-        let display = first_frame(true);
+        let display = first_frame(true, None);
         let lit = (STATUS_ROWS as i32..SIZE as i32)
             .flat_map(|y| (0..SIZE as i32).map(move |x| Point::new(x, y)))
             .filter(|&p| display.get_pixel(p) != Rgb565::BLACK)
@@ -480,22 +556,56 @@ mod tests {
     #[test]
     fn demo_arguments() {
         let os = |v: &[&str]| v.iter().map(OsString::from).collect::<Vec<_>>();
-        assert!(!is_demo(&os(&[])));
+        assert!(is_demo(&os(&[])));
         assert!(is_demo(&os(&["--demo"])));
         assert!(is_demo(&os(&["--paused"])));
         assert!(is_demo(&os(&["--dump-expected=x.png"])));
         assert!(!is_demo(&os(&["render"])));
-        assert!(!is_demo(&os(&["--model", "a.obj"])));
+        assert!(is_demo(&os(&["--model", "a.obj"])));
+        assert_eq!(
+            parse_args(&os(&["--model", "a.obj"])).unwrap().model,
+            Some(PathBuf::from("a.obj"))
+        );
         let a = parse_args(&os(&["--paused", "--dump-expected", "e.png", "--frames=3"])).unwrap();
         assert_eq!(
             a,
             DemoArgs {
                 paused: true,
                 dump_expected: Some("e.png".into()),
-                frames: Some(3)
+                frames: Some(3),
+                model: None,
             }
         );
         assert!(parse_args(&os(&["--frames", "x"])).is_err());
         assert!(parse_args(&os(&["--dump-expected"])).is_err());
+    }
+
+    #[test]
+    fn a_model_is_the_first_scene_and_the_camera_orbits_it() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../assets/models/torus.off");
+        let model = crate::model::load(Path::new(path)).unwrap();
+        let mut renderers = Renderers::new();
+        let mut view = View {
+            has_model: true,
+            ..View::default()
+        };
+        assert_eq!(view.scene_name(), "model");
+        let mut a = new_display();
+        let first = render(&mut renderers, &view, Some(&model), &mut a);
+        let polygons = first.result.unwrap().polygons;
+        assert!(polygons > 10);
+        view.angle = 1.0; // the camera moves round the model: another picture
+        let mut b = new_display();
+        render(&mut renderers, &view, Some(&model), &mut b)
+            .result
+            .unwrap();
+        assert_ne!(a, b);
+        // `n` goes on to the demos, and back round to the model.
+        view.apply(Action::NextScene);
+        assert_eq!(view.scene_name(), zrow_scenes::DEMOS[0]);
+        for _ in 0..zrow_scenes::DEMOS.len() {
+            view.apply(Action::NextScene);
+        }
+        assert!(view.shows_model());
     }
 }

@@ -6,7 +6,7 @@ use zrow_sim::cli::{self, Command};
 
 fn main() -> ExitCode {
     let args: Vec<_> = std::env::args_os().skip(1).collect();
-    // `--demo` (or another demo flag): the demo window, or its PNG when there is none.
+    // No arguments or the demo's flags: the demo window, or its PNG when there is none.
     let result = if zrow_sim::demo::is_demo(&args) {
         zrow_sim::demo::run(&args)
     } else {

@@ -1,6 +1,6 @@
 //! The simulator window (feature `window`, needs SDL2: `apt-get install libsdl2-dev`).
 //!
-//! `zrow-sim --demo [--paused]` shows [`crate::demo`] at 240×240, scaled 2×. Keys: `m` next
+//! `zrow-sim [--paused]` shows [`crate::demo`] at 240×240, scaled 2×. Keys: `m` next
 //! method, `f` Q16.16 ↔ f32, space pause, `s` or Right one step (pauses), `n` next scene, `c`
 //! back-face culling on/off, Escape or `q` quit.
 //!
@@ -8,6 +8,7 @@
 //! simulator panics when it cannot.
 
 use crate::demo::{self, Action, DemoArgs, Renderers, View, SCALE, TITLE};
+use crate::model::LoadedModel;
 use embedded_graphics_simulator::sdl2::Keycode;
 use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorEvent, Window};
 use std::time::Duration;
@@ -42,7 +43,7 @@ fn probe() -> Result<sdl2::Sdl, NoWindow> {
 }
 
 /// Opens the window and runs the demo until it is closed (or `--frames` updates have passed).
-pub fn run(args: &DemoArgs) -> Result<(), NoWindow> {
+pub fn run(args: &DemoArgs, model: Option<&LoadedModel>) -> Result<(), NoWindow> {
     let _sdl = probe()?;
     let settings = OutputSettingsBuilder::new().scale(SCALE).build();
     let mut window = Window::new(TITLE, &settings);
@@ -50,6 +51,7 @@ pub fn run(args: &DemoArgs) -> Result<(), NoWindow> {
     let mut renderers = Renderers::new();
     let mut view = View {
         paused: args.paused,
+        has_model: model.is_some(),
         ..View::default()
     };
     let mut dirty = true;
@@ -57,7 +59,7 @@ pub fn run(args: &DemoArgs) -> Result<(), NoWindow> {
     let mut updates = 0u64;
     loop {
         if dirty || !view.paused {
-            let frame = demo::render(&mut renderers, &view, &mut display);
+            let frame = demo::render(&mut renderers, &view, model, &mut display);
             // A running average over about 16 frames, so the figure can be read.
             let shown = match average {
                 Some(a) if frame.result.is_ok() => (a * 15 + frame.time) / 16,

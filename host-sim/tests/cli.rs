@@ -135,7 +135,6 @@ fn missing_file_and_bad_size_fail_on_one_line() {
             "render", "--screen", "a.off", "--out", "x.png", "--size", "0x0",
         ],
         vec!["render"],
-        vec![],
     ] {
         let out = bin().current_dir(&dir).args(&args).output().unwrap();
         assert!(!out.status.success(), "{args:?}");
