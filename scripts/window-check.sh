@@ -43,6 +43,9 @@ if [ ${#need[@]} -gt 0 ]; then
     $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${need[@]}" >/dev/null
 fi
 
+# ImageMagick's own convert (Debian names it convert-im6.q16), not any other `convert` on PATH.
+CONVERT=$(command -v convert-im6.q16 || command -v convert)
+
 cargo build --release -p zrow-sim --features window
 bin="${CARGO_TARGET_DIR:-target}/release/zrow-sim"
 [ -x "$bin" ] || fail "no binary at $bin"
@@ -85,7 +88,7 @@ for _ in $(seq 60); do
     h=$(awk '/Height:/ {print $2}' <<<"$info")
     [ "$w" = "$SIDE" ] && [ "$h" = "$SIDE" ] || fail "window is ${w}x${h}, expected ${SIDE}x${SIDE}"
     import -window root "$OUT/shot.png"
-    convert "$OUT/shot.png" -crop "${SIDE}x${SIDE}+${x}+${y}" +repage "$OUT/window.png"
+    "$CONVERT" "$OUT/shot.png" -crop "${SIDE}x${SIDE}+${x}+${y}" +repage "$OUT/window.png"
     # Pixels that differ below the status line.
     below="-crop ${SIDE}x$((SIDE - STATUS))+0+${STATUS} +repage"
     # shellcheck disable=SC2086
@@ -94,11 +97,11 @@ for _ in $(seq 60); do
     match=$(( (total - diff) * 100 / total ))
     # Not blank: below the status line, at least half as many non-black pixels as expected.
     # shellcheck disable=SC2086
-    lit=$(convert "$OUT/window.png" $below -fill white +opaque black -format '%[fx:int(mean*1000)]' info:)
+    lit=$("$CONVERT" "$OUT/window.png" $below -fill white +opaque black -format '%[fx:int(mean*1000)]' info:)
     # shellcheck disable=SC2086
-    want=$(convert "$OUT/expected.png" $below -fill white +opaque black -format '%[fx:int(mean*1000)]' info:)
+    want=$("$CONVERT" "$OUT/expected.png" $below -fill white +opaque black -format '%[fx:int(mean*1000)]' info:)
     # shellcheck disable=SC2086
-    colours=$(convert "$OUT/window.png" $below -format '%k' info:)
+    colours=$("$CONVERT" "$OUT/window.png" $below -format '%k' info:)
     result="window at +$x+$y: $match % of $total pixels below the status line match the expected frame; $((lit / 10)).$((lit % 10)) % of them not black (expected $((want / 10)).$((want % 10)) %); $colours colours"
     if [ "$match" -ge "$MIN_MATCH" ] && [ "$want" -ge 20 ] && [ $((2 * lit)) -ge "$want" ] && [ "$colours" -ge 8 ]; then
         echo "window-check: OK: $result"
