@@ -27,9 +27,7 @@ use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
-use zrow::{
-    Affine, Cull, DrawTargetSink, FrameStats, ModelScene, Object, RenderError, Scanline, Q16_16,
-};
+use zrow::{Cull, DrawTargetSink, FrameStats, RenderError, Scanline, Q16_16};
 
 /// Frame side in pixels (the ST7789 panel).
 pub const SIZE: u32 = zrow_scenes::SIZE as u32;
@@ -239,21 +237,17 @@ where
                 yaw_deg: view.angle.to_degrees(),
                 ..model_render::View::default()
             };
-            let mut cfg = zrow::Config::model(SIZE as u16, SIZE as u16);
-            cfg.cull = cull;
-            let drawn = model.with_mesh::<N, _>(|mesh| {
-                let camera = orbit.camera::<N>()?;
-                let objects = [Object {
-                    mesh,
-                    transform: Affine::identity(),
-                }];
-                let scene = ModelScene {
-                    objects: &objects,
-                    camera,
-                    light: model_render::light::<N>(),
-                };
-                Some(renderer.render(&scene, &cfg, &mut DrawTargetSink(&mut *display)))
-            });
+            let drawn = model_render::with_scene::<N, _>(
+                model,
+                &orbit,
+                SIZE as u16,
+                SIZE as u16,
+                |scene, cfg| {
+                    let mut cfg = *cfg;
+                    cfg.cull = cull;
+                    Some(renderer.render(scene, &cfg, &mut DrawTargetSink(&mut *display)))
+                },
+            );
             match drawn {
                 Ok(out) => out,
                 Err(e) => {

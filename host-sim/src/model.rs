@@ -27,6 +27,7 @@
 //! `vertex` ×3 / `endloop` / `endfacet` structure). Nothing in here panics, whatever the bytes.
 
 use crate::error::SimError;
+use crate::off::shown;
 use crate::off::{self, rgb8_to_rgb565};
 use core::fmt;
 use embedded_graphics::pixelcolor::Rgb565;
@@ -313,19 +314,6 @@ fn parse_off(file: &str, data: &[u8]) -> Result<LoadedModel, SimError> {
 
 // ---------------------------------------------------------------------------------------------
 // Text helpers
-
-/// A token as quoted in a message: escaped to stay on one line, cut to 32 characters.
-fn shown(token: &str) -> String {
-    let mut s: String = token
-        .chars()
-        .take(32)
-        .flat_map(char::escape_debug)
-        .collect();
-    if token.chars().count() > 32 {
-        s.push('…');
-    }
-    s
-}
 
 /// The lines of a text file with their 1-based numbers, comments (`#`) cut and tokens split;
 /// `Err(line)` for a line that is not UTF-8.

@@ -160,8 +160,9 @@ fn measure<N: Scalar>(
     zrow::requirements(scene, cfg, &mut rows).map_err(|e| blame(model, e))
 }
 
-/// Builds the scene and calls `f` with it.
-fn with_scene<N: Scalar, R>(
+/// Builds the scene (the model at the origin, the orbit camera, the fixed light) and calls `f`
+/// with it and a `width × height` model-mode configuration.
+pub(crate) fn with_scene<N: Scalar, R>(
     model: &LoadedModel,
     view: &View,
     width: u16,

@@ -285,7 +285,7 @@ impl fmt::Display for OffErrorKind {
 
 /// A token as quoted in a message: control characters escaped (so the message stays on one
 /// line) and cut to 32 characters.
-fn shown(token: &str) -> String {
+pub(crate) fn shown(token: &str) -> String {
     let mut s: String = token
         .chars()
         .take(32)

@@ -11,8 +11,10 @@
 //! git: look at it, then fix the code or bless) and fails with the number of differing pixels.
 //! A missing reference is a failure too, unless blessing.
 
+mod support;
+
 use std::path::{Path, PathBuf};
-use zrow_sim::png_io;
+use support::compare_golden;
 use zrow_sim::render::{render_screen, Algo, Format};
 
 const SIZE: u16 = 240;
@@ -52,53 +54,7 @@ fn check(scene_path: &Path, algo: Algo, format: Format, bless: bool) -> Result<(
     let data = std::fs::read(scene_path).map_err(|e| format!("{stem}: {e}"))?;
     let scene = zrow_sim::off::parse(&stem, &data).map_err(|e| e.to_string())?;
     let image = render_screen(&scene, SIZE, SIZE, algo, format).map_err(|e| e.to_string())?;
-    let mut png = Vec::new();
-    png_io::encode(&image, &mut png).map_err(|e| e.to_string())?;
-
-    if bless {
-        std::fs::write(&reference, &png).map_err(|e| e.to_string())?;
-        let _ = std::fs::remove_file(&actual_path);
-        return Ok(());
-    }
-    let want = match std::fs::read(&reference) {
-        Ok(bytes) => png_io::decode(&bytes).map_err(|e| format!("{}: {e}", reference.display()))?,
-        Err(e) => {
-            std::fs::write(&actual_path, &png).map_err(|e| e.to_string())?;
-            return Err(format!(
-                "{}: {e} (bless with ZROW_BLESS=1; wrote {})",
-                reference.display(),
-                actual_path.display()
-            ));
-        }
-    };
-    let got = image.to_rgb8();
-    let differing = if (want.width, want.height) != (SIZE as u32, SIZE as u32) {
-        usize::MAX
-    } else {
-        got.chunks(3)
-            .zip(want.data.chunks(3))
-            .filter(|(a, b)| a != b)
-            .count()
-    };
-    if differing == 0 {
-        let _ = std::fs::remove_file(&actual_path);
-        return Ok(());
-    }
-    std::fs::write(&actual_path, &png).map_err(|e| e.to_string())?;
-    Err(if differing == usize::MAX {
-        format!(
-            "{}: reference is {}x{}, expected {SIZE}x{SIZE}",
-            reference.display(),
-            want.width,
-            want.height
-        )
-    } else {
-        format!(
-            "{}: {differing} pixels differ (see {})",
-            reference.display(),
-            actual_path.display()
-        )
-    })
+    compare_golden(&image, &reference, &actual_path, bless)
 }
 
 #[test]

@@ -6,26 +6,13 @@
 //! The mutations come from a fixed-seed generator, so a failure reproduces; the failing input
 //! is printed.
 
+mod support;
+
 use std::path::Path;
+use support::Rng;
 use zrow_sim::off;
 use zrow_sim::render::{render_screen, Algo, Format};
 
-/// xorshift64*: small, deterministic, good enough to pick mutations.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-}
-
-/// Values that stress the parser and the number formats.
 const NASTY: &[&str] = &[
     "0",
     "-1",

@@ -10,6 +10,8 @@
 //!
 //! A differing frame is written next to its reference as `model_NAME.FORMAT.actual.png`.
 
+mod support;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use zrow_sim::model::{self, Origin};
@@ -372,46 +374,7 @@ fn check_golden(name: &str, format: Format, bless: bool) -> Result<(), String> {
     let m = model::load(&models_dir().join(name)).map_err(|e| e.to_string())?;
     let image = render_model_image(&m, &View::default(), SIZE, SIZE, Algo::Scanline, format)
         .map_err(|e| e.to_string())?;
-    let mut png = Vec::new();
-    png_io::encode(&image, &mut png).map_err(|e| e.to_string())?;
-    if bless {
-        std::fs::write(&reference, &png).map_err(|e| e.to_string())?;
-        let _ = std::fs::remove_file(&actual_path);
-        return Ok(());
-    }
-    let want = match std::fs::read(&reference) {
-        Ok(bytes) => png_io::decode(&bytes).map_err(|e| format!("{}: {e}", reference.display()))?,
-        Err(e) => {
-            std::fs::write(&actual_path, &png).map_err(|e| e.to_string())?;
-            return Err(format!(
-                "{}: {e} (bless with ZROW_BLESS=1; wrote {})",
-                reference.display(),
-                actual_path.display()
-            ));
-        }
-    };
-    let got = image.to_rgb8();
-    let same_size = (want.width, want.height) == (SIZE as u32, SIZE as u32);
-    let differing = got
-        .chunks(3)
-        .zip(want.data.chunks(3))
-        .filter(|(a, b)| a != b)
-        .count();
-    if same_size && differing == 0 {
-        let _ = std::fs::remove_file(&actual_path);
-        return Ok(());
-    }
-    std::fs::write(&actual_path, &png).map_err(|e| e.to_string())?;
-    Err(format!(
-        "{}: {} (see {})",
-        reference.display(),
-        if same_size {
-            format!("{differing} pixels differ")
-        } else {
-            format!("reference is {}x{}", want.width, want.height)
-        },
-        actual_path.display()
-    ))
+    support::compare_golden(&image, &reference, &actual_path, bless)
 }
 
 #[test]

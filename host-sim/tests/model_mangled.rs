@@ -6,25 +6,13 @@
 //! The mutations come from a fixed-seed generator, so a failure reproduces; the failing input
 //! is printed. `ZROW_MANGLE_ROUNDS=N` runs N mutations per model instead of 300.
 
+mod support;
+
 use std::path::Path;
+use support::Rng;
 use zrow_sim::model::{self, ModelFormat};
 use zrow_sim::model_render::{render_model_image, View};
 use zrow_sim::render::{Algo, Format};
-
-/// xorshift64*: small, deterministic, good enough to pick mutations.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-}
 
 const NASTY: &[&str] = &[
     "0", "-1", "1", "3", "-4", "65536", "70000", "1e30", "-1e30", "1e39", "nan", "inf", "0.5", "f",
