@@ -88,7 +88,7 @@ impl MeshGen {
         for (idx, (r, g, b)) in &self.faces {
             writeln!(
                 out,
-                "    Face {{ indices: &{idx:?}, color: Rgb565::new({r}, {g}, {b}) }},"
+                "    Face {{ indices: &{idx:?}, color: Rgb565::new({r}, {g}, {b}), alpha: 255 }},"
             )
             .unwrap();
         }

@@ -157,6 +157,7 @@ impl LoadedModel {
             .map(|face| Face {
                 indices: &face.indices,
                 color: face.color,
+                alpha: 255,
             })
             .collect();
         Ok(f(&Mesh {

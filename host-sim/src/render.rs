@@ -175,6 +175,7 @@ fn faces(scene: &OffScene) -> Vec<Face<'_>> {
         .map(|f| Face {
             indices: &f.indices,
             color: f.rgb565(),
+            alpha: 255,
         })
         .collect()
 }

@@ -146,6 +146,7 @@ fn renderer_reports_the_sink_error() {
     let faces = [Face {
         indices: &[0, 1, 2],
         color: Rgb565::BLUE,
+        alpha: 255,
     }];
     let scene = ScreenScene {
         mesh: Mesh {

@@ -14,6 +14,17 @@ pub enum Table {
     ActivePolygons,
     /// The row buffers (`depth[x]`, `intensity[x]`): the frame is wider than they are.
     RowWidth,
+    /// A whole-frame or band buffer (z-buffer rows, tiled z-buffer band): the frame is
+    /// taller or wider than it holds.
+    FrameBuffer,
+    /// Pieces (polygons and the parts splitting made of them): depth-sort and BSP.
+    Pieces,
+    /// BSP tree depth (the build's explicit stack).
+    BspDepth,
+    /// Warnock's potentially-visible lists, summed over the levels of subdivision.
+    VisibleList,
+    /// Translucent fragments in one row (A-buffer).
+    Fragments,
 }
 
 /// What went wrong, and what to do about it.
@@ -72,6 +83,11 @@ impl core::fmt::Display for Table {
             Table::Edges => "edge table",
             Table::ActivePolygons => "active list",
             Table::RowWidth => "row buffer",
+            Table::FrameBuffer => "frame buffer",
+            Table::Pieces => "piece table",
+            Table::BspDepth => "BSP stack",
+            Table::VisibleList => "potentially-visible list",
+            Table::Fragments => "fragment list",
         })
     }
 }

@@ -89,6 +89,7 @@ fn snap_all<N: Scalar>(
     poly: &Poly<Vec3<N>>,
     cfg: &Config,
     color: Rgb565,
+    alpha: u8,
     face: u32,
 ) -> Result<RasterPolygon<N>, Error> {
     let s = cfg.subpixel_bits as u32;
@@ -101,6 +102,7 @@ fn snap_all<N: Scalar>(
     Ok(RasterPolygon {
         vertices,
         color,
+        alpha,
         face,
     })
 }
@@ -154,7 +156,7 @@ impl<N: Scalar> Scene<N> for ScreenScene<'_, N> {
             let mut poly = gather(&self.mesh, face, no)?;
             clip_guard_band(&mut poly, cfg, no)?;
             if poly.len() >= 3 {
-                f(&snap_all(&poly, cfg, face.color, no)?)?;
+                f(&snap_all(&poly, cfg, face.color, face.alpha, no)?)?;
             }
         }
         Ok(())
@@ -327,7 +329,7 @@ impl<N: Scalar> Scene<N> for ModelScene<'_, N> {
                     };
                     let _ = screen.push(Vec3::new(cx.add(nx.mul(cx)), cy.sub(ny.mul(cy)), z));
                 }
-                f(&snap_all(&screen, cfg, color, this)?)?;
+                f(&snap_all(&screen, cfg, color, face.alpha, this)?)?;
             }
         }
         Ok(())

@@ -17,8 +17,8 @@
 //!     q(2.0, 0.0, 6.0), q(6.0, 0.0, 6.0), q(4.0, 4.0, 0.0), // s2
 //! ];
 //! let faces = [
-//!     Face { indices: &[0, 1, 2], color: Rgb565::RED },
-//!     Face { indices: &[3, 4, 5], color: Rgb565::GREEN },
+//!     Face { indices: &[0, 1, 2], color: Rgb565::RED, alpha: 255 },
+//!     Face { indices: &[3, 4, 5], color: Rgb565::GREEN, alpha: 255 },
 //! ];
 //! let scene = ScreenScene { mesh: Mesh { vertices: &vertices, faces: &faces } };
 //!
@@ -35,7 +35,7 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
-/// Back-face culling (the seeds' normal test).
+/// Back-face culling (the seeds' normal test), a stage any method can use.
 pub mod backface;
 /// Typed errors.
 pub mod error;
@@ -43,24 +43,46 @@ pub mod error;
 pub mod geometry;
 /// Vectors and affine transforms in any format.
 pub mod math;
+/// The interface every hidden-surface method implements.
+pub mod method;
 /// Number formats: [`Q16_16`] and `f32` behind one trait.
 pub mod number;
+/// The polygon table methods that revisit polygons keep, with exact sample queries.
+pub mod polygons;
 /// Snapped polygons, the exact edge walk, polygon setup.
 pub mod raster;
 /// Capacities a scene needs.
 pub mod requirements;
-/// The scan-line method.
-pub mod scanline;
 /// Meshes, objects, camera, light; screen-space scenes.
 pub mod scene;
 /// Where rows go.
 pub mod sink;
 
+// The methods, one file each, all behind [`Renderer`].
+/// Transparency in the A-buffer spirit: translucent faces blended per row.
+pub mod abuffer;
+/// The BSP tree: built with splitting, traversed in view order.
+pub mod bsp;
+/// Depth-sort (Newell's painter): sort, the five tests, split.
+pub mod depthsort;
+/// The scan-line method: one row at a time, an edge table and an active list.
+pub mod scanline;
+/// Polygons split by another's plane, exactly (depth-sort and BSP share it).
+pub mod split;
+/// The tiled 16-bit z-buffer: one band of rows at a time.
+pub mod tiled;
+/// Warnock's area subdivision.
+pub mod warnock;
+/// The z-buffer: a depth and a colour for every pixel of the frame.
+pub mod zbuffer;
+
 pub use error::{Error, RenderError, Table};
 pub use math::{Affine, Vec3};
+pub use method::{FrameStats, Renderer};
 pub use number::{Scalar, Q16_16};
 pub use raster::{Config, Cull};
 pub use requirements::{requirements, Requirements};
-pub use scanline::{FrameStats, Scanline};
+pub use scanline::Scanline;
 pub use scene::{Camera, Face, Light, Mesh, ModelScene, Object, Projection, Scene, ScreenScene};
 pub use sink::{DrawTargetSink, FrameBuffer, Row, RowSink};
+pub use zbuffer::ZBuffer;

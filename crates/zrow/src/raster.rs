@@ -53,6 +53,8 @@ pub struct RasterPolygon<N> {
     pub vertices: heapless::Vec<RasterVertex<N>, MAX_POLYGON_VERTICES>,
     /// Its colour after shading.
     pub color: Rgb565,
+    /// Its opacity (255 = opaque), from [`crate::Face::alpha`].
+    pub alpha: u8,
     /// Index of the face in the scene (for errors).
     pub face: u32,
 }

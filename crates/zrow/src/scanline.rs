@@ -30,6 +30,7 @@
 //! Every capacity is checked while the tables are built, before the first row is sent.
 
 use crate::error::{Error, RenderError, Table};
+use crate::method::{FrameStats, Renderer};
 use crate::number::{DepthPlane, Scalar};
 use crate::raster::{setup, Config, Dda, Edge, Side};
 use crate::requirements::Requirements;
@@ -70,21 +71,6 @@ struct Active<N> {
     poly: u16,
     color: Rgb565,
     fresh: bool,
-}
-
-/// What a frame cost, for benchmarks and tests.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct FrameStats {
-    /// Polygons in the polygon table.
-    pub polygons: u32,
-    /// Edges in the edge table.
-    pub edges: u32,
-    /// Most polygons active in one row.
-    pub max_active: u32,
-    /// Times a row's front polygon was sought among the open ones (a visible change).
-    pub front_changes: u32,
-    /// Of those, how many were at an intersection (the front overtaken mid-span).
-    pub crossings: u32,
 }
 
 /// The scan-line renderer.
@@ -442,6 +428,21 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
                 front = None;
             }
         }
+    }
+}
+
+impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize> Renderer<N>
+    for Scanline<N, W, P, E, A>
+{
+    const NAME: &'static str = "scanline";
+    const RAM_BYTES: usize = Self::RAM_BYTES;
+    fn render<K: RowSink<N>>(
+        &mut self,
+        scene: &(impl Scene<N> + ?Sized),
+        cfg: &Config,
+        sink: &mut K,
+    ) -> Result<FrameStats, RenderError<K::Error>> {
+        Scanline::render(self, scene, cfg, sink)
     }
 }
 

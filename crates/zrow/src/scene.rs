@@ -15,6 +15,29 @@ pub struct Face<'a> {
     pub indices: &'a [u16],
     /// Colour (screen-space mode draws it as is; model mode shades it).
     pub color: Rgb565,
+    /// Opacity, 255 = opaque (the default). Methods that resolve one visible surface per
+    /// pixel treat every face as opaque; [`crate::abuffer`] blends translucent faces over the
+    /// opaque surface behind them.
+    pub alpha: u8,
+}
+
+impl<'a> Face<'a> {
+    /// An opaque face.
+    pub const fn new(indices: &'a [u16], color: Rgb565) -> Self {
+        Face {
+            indices,
+            color,
+            alpha: 255,
+        }
+    }
+    /// A face with opacity `alpha` (0 = invisible, 255 = opaque).
+    pub const fn translucent(indices: &'a [u16], color: Rgb565, alpha: u8) -> Self {
+        Face {
+            indices,
+            color,
+            alpha,
+        }
+    }
 }
 
 /// A mesh: vertices and faces, both borrowed.

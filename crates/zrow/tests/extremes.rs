@@ -406,10 +406,12 @@ fn e10_same_renderer_twice_is_identical() {
         Face {
             indices: &[0, 1, 2],
             color: Rgb565::RED,
+            alpha: 255,
         },
         Face {
             indices: &[3, 4, 5],
             color: Rgb565::BLUE,
+            alpha: 255,
         },
     ];
     let scene = ScreenScene {
@@ -527,6 +529,7 @@ fn near_plane_scene<N: Scalar>(tri: [[f32; 3]; 3]) -> Capture<N> {
     let faces = [Face {
         indices: &[0, 1, 2],
         color: Rgb565::WHITE,
+        alpha: 255,
     }];
     let camera = Camera::look_at(
         [0.0, 0.0, 0.0],
@@ -689,6 +692,7 @@ fn bad_input<N: Scalar>() {
     let tri = Face {
         indices: &[0, 1, 2],
         color: Rgb565::RED,
+        alpha: 255,
     };
 
     let (e, rows) = run(
@@ -698,6 +702,7 @@ fn bad_input<N: Scalar>() {
             Face {
                 indices: &[0, 1, 7],
                 color: Rgb565::RED,
+                alpha: 255,
             },
         ],
     );
@@ -714,6 +719,7 @@ fn bad_input<N: Scalar>() {
         &[Face {
             indices: &[0, 1],
             color: Rgb565::RED,
+            alpha: 255,
         }],
     );
     assert_eq!(
@@ -726,6 +732,7 @@ fn bad_input<N: Scalar>() {
         &[Face {
             indices: &[0; 12],
             color: Rgb565::RED,
+            alpha: 255,
         }],
     );
     assert_eq!(
@@ -769,6 +776,7 @@ fn bad_input<N: Scalar>() {
         &[Face {
             indices: &[0, 3, 2, 1, 4],
             color: Rgb565::RED,
+            alpha: 255,
         }],
     );
     assert_eq!(e, Err(RenderError::Scene(Error::NotConvex { face: 0 })));
@@ -812,6 +820,7 @@ fn e23_bad_input_is_a_typed_error_before_any_row() {
     let faces = [Face {
         indices: &[0, 1, 2],
         color: Rgb565::RED,
+        alpha: 255,
     }];
     let scene = ScreenScene {
         mesh: Mesh {

@@ -18,6 +18,7 @@ fn draw<N: Scalar>(
         .map(|(i, c)| Face {
             indices: i,
             color: *c,
+            alpha: 255,
         })
         .collect();
     let scene = ScreenScene {

@@ -129,6 +129,7 @@ mod no_panic {
             .map(|i| Face {
                 indices: i,
                 color: Rgb565::new(31, 0, 0),
+                alpha: 255,
             })
             .collect();
         let mesh = Mesh {

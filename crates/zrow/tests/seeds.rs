@@ -104,6 +104,7 @@ fn render_cube<N: Scalar>(camera: Camera<N>, size: u16) -> [usize; 6] {
         .map(|(i, (idx, _))| Face {
             indices: idx,
             color: color_of(i),
+            alpha: 255,
         })
         .collect();
     let cap = render_model(&verts, &faces, camera, &Config::model(size, size));

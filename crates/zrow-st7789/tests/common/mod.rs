@@ -37,6 +37,7 @@ impl Polys {
             .map(|(i, (_, color))| Face {
                 indices: i,
                 color: *color,
+                alpha: 255,
             })
             .collect();
         f(&ScreenScene {

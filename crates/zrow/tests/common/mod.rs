@@ -4,8 +4,8 @@
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use zrow::{
-    Affine, Camera, Config, Face, Light, Mesh, ModelScene, Object, Row, RowSink, Scalar, Scanline,
-    ScreenScene, Vec3,
+    Affine, Camera, Config, Face, Light, Mesh, ModelScene, Object, Renderer, Row, RowSink, Scalar,
+    Scanline, ScreenScene, Vec3,
 };
 
 /// Host capacities big enough for every test scene.
@@ -89,6 +89,15 @@ impl Polys {
     }
     /// Renders with the scan-line method into a capture.
     pub fn render<N: Scalar>(&self, cfg: &Config) -> Result<Capture<N>, zrow::RenderError<()>> {
+        self.render_with(&mut *Box::new(Big::<N>::new()), cfg)
+    }
+
+    /// Renders with any method into a capture (which checks that rows arrive in order).
+    pub fn render_with<N: Scalar, R: Renderer<N>>(
+        &self,
+        r: &mut R,
+        cfg: &Config,
+    ) -> Result<Capture<N>, zrow::RenderError<()>> {
         let mut verts = Vec::new();
         let mut idx: Vec<Vec<u16>> = Vec::new();
         for p in &self.polys {
@@ -105,6 +114,7 @@ impl Polys {
             .map(|(i, f)| Face {
                 indices: f,
                 color: color_of(i),
+                alpha: 255,
             })
             .collect();
         let scene = ScreenScene {
@@ -113,7 +123,6 @@ impl Polys {
                 faces: &faces,
             },
         };
-        let mut r = Box::new(Big::<N>::new());
         let mut cap = Capture::new(cfg.width as usize, cfg.height as usize);
         r.render(&scene, cfg, &mut cap)?;
         Ok(cap)
@@ -310,4 +319,91 @@ pub fn render_model<N: Scalar>(
     let mut cap = Capture::new(cfg.width as usize, cfg.height as usize);
     r.render(&scene, cfg, &mut cap).unwrap();
     cap
+}
+
+/// Scenes every method must draw as the reference does (GUIDE §4.2, EXTREMES item 20).
+pub mod scenes {
+    use super::{Polys, Rng};
+
+    /// `n` random triangles and parallelograms over a `w`×`h` screen (some reaching past
+    /// it), vertices on the 1/256 grid, depths in 0..64.
+    pub fn random(rng: &mut Rng, n: usize, w: f32, h: f32) -> Polys {
+        let grid = |v: f32| (v * 256.0).round() / 256.0;
+        let mut polys = Vec::new();
+        for _ in 0..n {
+            let v = |rng: &mut Rng| {
+                [
+                    grid(rng.f(-0.3 * w, 1.3 * w)),
+                    grid(rng.f(-0.3 * h, 1.3 * h)),
+                    grid(rng.f(0.0, 64.0)),
+                ]
+            };
+            let (a, b, c) = (v(rng), v(rng), v(rng));
+            if rng.below(3) == 0 {
+                let d = [a[0] + c[0] - b[0], a[1] + c[1] - b[1], a[2] + c[2] - b[2]];
+                polys.push(vec![a, b, c, d]);
+            } else {
+                polys.push(vec![a, b, c]);
+            }
+        }
+        Polys::new(polys)
+    }
+
+    /// `n` large polygons stacked over the same area with random tilts: every pair
+    /// interpenetrates somewhere (the worst case for depth-sort and BSP splitting).
+    pub fn dense(rng: &mut Rng, n: usize, w: f32, h: f32) -> Polys {
+        let grid = |v: f32| (v * 256.0).round() / 256.0;
+        let mut polys = Vec::new();
+        for _ in 0..n {
+            let z = |rng: &mut Rng| grid(rng.f(8.0, 56.0));
+            polys.push(vec![
+                [
+                    grid(rng.f(-4.0, 0.2 * w)),
+                    grid(rng.f(-4.0, 0.2 * h)),
+                    z(rng),
+                ],
+                [
+                    grid(rng.f(0.8 * w, w + 4.0)),
+                    grid(rng.f(-4.0, 0.3 * h)),
+                    z(rng),
+                ],
+                [
+                    grid(rng.f(0.3 * w, 0.7 * w)),
+                    grid(rng.f(0.8 * h, h + 4.0)),
+                    z(rng),
+                ],
+            ]);
+        }
+        Polys::new(polys)
+    }
+
+    /// Three long bars in cyclic overlap (each lies over the next at their crossing, none
+    /// interpenetrates): no painter's order exists without splitting. Sized for a 48×48
+    /// screen; `shift` moves it by whole sub-pixels.
+    pub fn cyclic(shift: f32) -> Polys {
+        let s = |x: f32| x + shift;
+        Polys::new(vec![
+            // Horizontal bar: near on the left, far on the right.
+            vec![
+                [s(2.0), s(10.0), 1.0],
+                [s(46.0), s(10.0), 9.0],
+                [s(46.0), s(18.0), 9.0],
+                [s(2.0), s(18.0), 1.0],
+            ],
+            // Bar going down-left: near at the top right, far at the bottom left.
+            vec![
+                [s(38.0), s(2.0), 2.0],
+                [s(46.0), s(6.0), 2.0],
+                [s(18.0), s(46.0), 10.0],
+                [s(10.0), s(42.0), 10.0],
+            ],
+            // Bar going down-right: far at the top left... near at the bottom right.
+            vec![
+                [s(4.0), s(4.0), 12.0],
+                [s(12.0), s(2.0), 12.0],
+                [s(44.0), s(40.0), 0.5],
+                [s(36.0), s(44.0), 0.5],
+            ],
+        ])
+    }
 }

@@ -1,0 +1,126 @@
+//! The z-buffer (depth-buffer) method, seed 000 §2.2.1 and seed 002.
+//!
+//! The seeds' algorithm: two buffers the size of the frame, `depth[x][y]` set to the maximum
+//! and `intensity[x][y]` to the background; scan-convert each polygon in any order and, at
+//! each pixel it covers, compute its depth z and keep the pixel where `z < depth[x][y]`.
+//! Depth moves incrementally: `z − A/C` one pixel right, `z + (A/m + B)/C` one row down.
+//!
+//! Here every polygon is streamed from the scene straight into the buffers — nothing is
+//! stored per polygon — and its rows come from the exact edge walk shared by every method
+//! ([`crate::polygons::walk_edges`]); depth starts each span from the polygon's plane and
+//! steps by `dzdx`, the same bits as the scan-line method in Q16.16. The test is a strict
+//! `<`, and polygons arrive in scene order, so a tie goes to the polygon first in the scene
+//! (seed 000 Example 3, GUIDE §1).
+//!
+//! Rows leave top to bottom, but only once the whole frame is drawn: the method needs the
+//! whole frame in RAM, `W·H·(size_of::<N>() + 2)` bytes ([`ZBuffer::RAM_BYTES`]) — 345,600
+//! bytes for 240×240 in Q16.16, more than an STM32F411 has. It is the host reference and
+//! the method for small screens; [`crate::tiled`] is its MCU form.
+
+use crate::error::{Error, RenderError, Table};
+use crate::method::{FrameStats, Renderer};
+use crate::number::Scalar;
+use crate::polygons::walk_edges;
+use crate::raster::{setup, Config};
+use crate::scene::Scene;
+use crate::sink::{Row, RowSink};
+use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+
+/// The z-buffer renderer: `W`×`H` depths and colours (the largest frame it can draw).
+pub struct ZBuffer<N, const W: usize, const H: usize> {
+    depth: [[N; W]; H],
+    intensity: [[Rgb565; W]; H],
+}
+
+impl<N: Scalar, const W: usize, const H: usize> Default for ZBuffer<N, W, H> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<N: Scalar, const W: usize, const H: usize> ZBuffer<N, W, H> {
+    /// Bytes of RAM the renderer occupies (both buffers).
+    pub const RAM_BYTES: usize = core::mem::size_of::<Self>();
+
+    /// An empty renderer (all zero, so a `static` one sits in `.bss`).
+    pub const fn new() -> Self {
+        ZBuffer {
+            depth: [[N::ZERO; W]; H],
+            intensity: [[Rgb565::BLACK; W]; H],
+        }
+    }
+
+    /// Renders `scene` and sends its rows, top to bottom, to `sink`.
+    pub fn render<K: RowSink<N>>(
+        &mut self,
+        scene: &(impl Scene<N> + ?Sized),
+        cfg: &Config,
+        sink: &mut K,
+    ) -> Result<FrameStats, RenderError<K::Error>> {
+        cfg.validate(W)?;
+        if cfg.height as usize > H {
+            return Err(Error::Capacity {
+                table: Table::FrameBuffer,
+                needed: cfg.height as u32,
+                capacity: H as u32,
+            }
+            .into());
+        }
+        let (w, h) = (cfg.width as usize, cfg.height as usize);
+        for row in &mut self.depth[..h] {
+            row[..w].fill(N::MAX);
+        }
+        for row in &mut self.intensity[..h] {
+            row[..w].fill(cfg.background);
+        }
+        let mut stats = FrameStats::default();
+        let s = cfg.subpixel_bits as u32;
+        let (depth, intensity) = (&mut self.depth, &mut self.intensity);
+        scene.polygons(cfg, &mut |poly| {
+            let Some(sp) = setup(poly, cfg)? else {
+                return Ok(());
+            };
+            stats.polygons += 1;
+            stats.edges += sp.edges.len() as u32;
+            let (first, last) = (sp.first_row as i32, sp.last_row as i32);
+            walk_edges(&sp.edges, s, first, last, |y, xl, xr| {
+                let (x0, x1) = (xl.max(0), xr.min(w as i32));
+                if x0 < x1 {
+                    let (zrow, crow) = (&mut depth[y as usize], &mut intensity[y as usize]);
+                    let mut z = sp.plane.at(x0, y);
+                    for x in x0 as usize..x1 as usize {
+                        if z < zrow[x] {
+                            zrow[x] = z;
+                            crow[x] = sp.color;
+                        }
+                        z = z.step(sp.plane.dzdx, 1);
+                    }
+                }
+                true
+            });
+            Ok(())
+        })?;
+        for y in 0..h {
+            sink.write_row(&Row {
+                y: y as u16,
+                intensity: &self.intensity[y][..w],
+                depth: &self.depth[y][..w],
+            })
+            .map_err(RenderError::Sink)?;
+        }
+        Ok(stats)
+    }
+}
+
+impl<N: Scalar, const W: usize, const H: usize> Renderer<N> for ZBuffer<N, W, H> {
+    const NAME: &'static str = "zbuffer";
+    const RAM_BYTES: usize = Self::RAM_BYTES;
+    fn render<K: RowSink<N>>(
+        &mut self,
+        scene: &(impl Scene<N> + ?Sized),
+        cfg: &Config,
+        sink: &mut K,
+    ) -> Result<FrameStats, RenderError<K::Error>> {
+        ZBuffer::render(self, scene, cfg, sink)
+    }
+}
