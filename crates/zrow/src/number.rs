@@ -61,6 +61,8 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     fn from_f32(v: f32) -> Option<Self>;
     /// Converts to `f32` (for reports and tests; rounding to nearest).
     fn to_f32(self) -> f32;
+    /// Converts to `f64`, exactly (both formats fit an `f64`'s 53-bit mantissa).
+    fn to_f64(self) -> f64;
     /// Whether the value is a number (always, for fixed point; not NaN or ±∞ for `f32`).
     fn is_finite(self) -> bool;
     /// Saturating addition.
@@ -163,6 +165,9 @@ impl Scalar for Q16_16 {
     }
     fn to_f32(self) -> f32 {
         self.to_num::<f32>()
+    }
+    fn to_f64(self) -> f64 {
+        self.to_num::<f64>()
     }
     fn is_finite(self) -> bool {
         true
@@ -271,6 +276,9 @@ impl Scalar for f32 {
     }
     fn to_f32(self) -> f32 {
         self
+    }
+    fn to_f64(self) -> f64 {
+        self as f64
     }
     fn is_finite(self) -> bool {
         f32::is_finite(self)
