@@ -98,6 +98,15 @@ impl Polys {
         r: &mut R,
         cfg: &Config,
     ) -> Result<Capture<N>, zrow::RenderError<()>> {
+        self.render_stats(r, cfg).map(|(cap, _)| cap)
+    }
+
+    /// As [`Polys::render_with`], with the method's frame statistics.
+    pub fn render_stats<N: Scalar, R: Renderer<N>>(
+        &self,
+        r: &mut R,
+        cfg: &Config,
+    ) -> Result<(Capture<N>, zrow::FrameStats), zrow::RenderError<()>> {
         let mut verts = Vec::new();
         let mut idx: Vec<Vec<u16>> = Vec::new();
         for p in &self.polys {
@@ -124,8 +133,8 @@ impl Polys {
             },
         };
         let mut cap = Capture::new(cfg.width as usize, cfg.height as usize);
-        r.render(&scene, cfg, &mut cap)?;
-        Ok(cap)
+        let stats = r.render(&scene, cfg, &mut cap)?;
+        Ok((cap, stats))
     }
 }
 
