@@ -26,6 +26,7 @@ fn check<N: Scalar>(p: &Polys, w: u16, h: u16) -> zrow::FrameStats {
 #[test]
 fn cyclic_overlap_is_split_and_exact() {
     for shift in [0.0, 0.25, 1.0] {
+        println!("shift {shift}");
         let s = check::<Q16_16>(&scenes::cyclic(shift), 48, 48);
         assert!(s.splits > 0, "a cyclic overlap needs a split");
         check::<f32>(&scenes::cyclic(shift), 48, 48);

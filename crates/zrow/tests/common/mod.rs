@@ -386,8 +386,9 @@ pub mod scenes {
         Polys::new(polys)
     }
 
-    /// Three long bars in cyclic overlap (each lies over the next at their crossing, none
-    /// interpenetrates): no painter's order exists without splitting. Sized for a 48×48
+    /// Three long planar bars (parallelograms) in cyclic overlap: bar 1 lies over bar 0 at
+    /// their crossing, bar 0 over bar 2, bar 2 over bar 1, so no painter's order of whole
+    /// polygons exists; splitting one resolves it. Sized for a 48×48
     /// screen; `shift` moves it by whole sub-pixels.
     pub fn cyclic(shift: f32) -> Polys {
         let s = |x: f32| x + shift;
@@ -406,12 +407,12 @@ pub mod scenes {
                 [s(18.0), s(46.0), 10.0],
                 [s(10.0), s(42.0), 10.0],
             ],
-            // Bar going down-right: far at the top left... near at the bottom right.
+            // Bar going down-right: far at the top left, near at the bottom right.
             vec![
-                [s(4.0), s(4.0), 12.0],
-                [s(12.0), s(2.0), 12.0],
-                [s(44.0), s(40.0), 0.5],
-                [s(36.0), s(44.0), 0.5],
+                [s(4.0), s(4.0), 9.0],
+                [s(12.0), s(2.0), 9.0],
+                [s(44.0), s(40.0), 0.0],
+                [s(36.0), s(42.0), 0.0],
             ],
         ])
     }
