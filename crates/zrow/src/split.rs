@@ -276,6 +276,31 @@ impl<N: Scalar, const Q: usize> Pieces<N, Q> {
         self.walk(t, k, width, |y, xl, xr| keep(xl, y) && keep(xr - 1, y))
     }
 
+    /// Where piece `k` lies against polygon `o`'s plane: `(near, far)` = whether `k`'s polygon
+    /// beats `o` at every sample of `k`, and whether `o` beats it at every one (both false: it
+    /// straddles the plane). One walk, stopped as soon as it straddles.
+    pub fn sides<const P: usize, const E: usize>(
+        &self,
+        t: &PolygonTable<N, P, E>,
+        k: u16,
+        o: u16,
+        width: i32,
+    ) -> (bool, bool) {
+        let pk = self.get(k).poly as usize;
+        let (mut near, mut far) = (true, true);
+        self.walk(t, k, width, |y, xl, xr| {
+            for x in [xl, xr - 1] {
+                if t.beats(pk, o as usize, x, y) {
+                    far = false;
+                } else {
+                    near = false;
+                }
+            }
+            near || far
+        });
+        (near, far)
+    }
+
     /// Whether pieces `a` and `b` share a sample (their projections overlap).
     pub fn overlap<const P: usize, const E: usize>(
         &self,
