@@ -37,7 +37,8 @@ usage:
   --screen FILE   OFF scene in screen space (x right, y down in pixels, z depth, smaller nearer)
   --out FILE      PNG to write (8-bit RGB, exactly WxH, background black)
   --size WxH      frame size, each side 1..=2048 (default 240x240)
-  --algo NAME     hidden-surface method: scanline (default scanline)
+  --algo NAME     hidden-surface method: scanline, zbuffer, tiled, depth-sort, warnock,
+                  bsp, abuffer, or auto (default scanline)
   --format FMT    number format: q16.16 or f32 (default q16.16)
 
   --model FILE    OBJ (with its MTL colours), STL (ASCII or binary) or OFF model; it is scaled
@@ -431,8 +432,8 @@ mod tests {
             ),
             (&["draw"], "unknown command `draw`"),
             (
-                &["render", "--algo", "zbuffer"],
-                "unknown --algo `zbuffer`: accepted names are scanline",
+                &["render", "--algo", "painter"],
+                "unknown --algo `painter`: accepted names are scanline, zbuffer",
             ),
             (
                 &["render", "--format", "q8"],

@@ -27,7 +27,7 @@ use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
-use zrow::{Cull, DrawTargetSink, FrameStats, RenderError, Scanline, Q16_16};
+use zrow::{Cull, DrawTargetSink, FrameStats, RenderError, Renderer, Scanline, Q16_16};
 
 /// Frame side in pixels (the ST7789 panel).
 pub const SIZE: u32 = zrow_scenes::SIZE as u32;
@@ -50,9 +50,22 @@ pub const DEMO_EDGES: usize = 8192;
 /// Active-list capacity of the demo renderer.
 pub const DEMO_ACTIVE: usize = 1024;
 
+/// Pieces (polygons plus split parts) for the demo's depth-sort and BSP.
+pub const DEMO_PIECES: usize = 16384;
+/// Deepest BSP tree the demo builds (a closed mesh inserted in its own order is deep).
+pub const DEMO_BSP_DEPTH: usize = 2048;
+
 /// The demo's renderer: 240-pixel rows and the capacities above (checked against every demo
 /// scene, turned, in both formats, culled or not, by a test).
 pub type DemoScanline<N> = Scanline<N, { SIZE as usize }, DEMO_POLYGONS, DEMO_EDGES, DEMO_ACTIVE>;
+/// The demo's z-buffer (240×240).
+pub type DemoZBuffer<N> = zrow::ZBuffer<N, { SIZE as usize }, { SIZE as usize }>;
+/// The demo's depth-sort.
+pub type DemoDepthSort<N> =
+    zrow::depthsort::DepthSort<N, { SIZE as usize }, DEMO_POLYGONS, DEMO_EDGES, DEMO_PIECES>;
+/// The demo's BSP tree.
+pub type DemoBsp<N> =
+    zrow::bsp::Bsp<N, { SIZE as usize }, DEMO_POLYGONS, DEMO_EDGES, DEMO_PIECES, DEMO_BSP_DEPTH>;
 
 /// What the window shows: method, format, scene, culling, angle, pause.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -158,10 +171,40 @@ impl View {
     }
 }
 
-/// The two renderers (one per format), boxed: their tables are too big for comfort on a stack.
+/// Every method in one number format, boxed (their tables are too big for a stack) and made
+/// when first used.
+pub struct Methods<N> {
+    scanline: Option<Box<DemoScanline<N>>>,
+    zbuffer: Option<Box<DemoZBuffer<N>>>,
+    depth_sort: Option<Box<DemoDepthSort<N>>>,
+    bsp: Option<Box<DemoBsp<N>>>,
+}
+
+impl<N: zrow::Scalar> Methods<N> {
+    fn new() -> Self {
+        Methods {
+            scanline: None,
+            zbuffer: None,
+            depth_sort: None,
+            bsp: None,
+        }
+    }
+
+    /// RAM of the renderer that draws with `algo` (its `RAM_BYTES`).
+    pub fn ram_bytes(algo: Algo) -> usize {
+        match algo.resolve() {
+            Algo::Scanline | Algo::Auto => DemoScanline::<N>::RAM_BYTES,
+            Algo::ZBuffer => DemoZBuffer::<N>::RAM_BYTES,
+            Algo::DepthSort => DemoDepthSort::<N>::RAM_BYTES,
+            Algo::Bsp => DemoBsp::<N>::RAM_BYTES,
+        }
+    }
+}
+
+/// The renderers, one set per format.
 pub struct Renderers {
-    q16: Box<DemoScanline<Q16_16>>,
-    f32: Box<DemoScanline<f32>>,
+    q16: Methods<Q16_16>,
+    f32: Methods<f32>,
 }
 
 impl Default for Renderers {
@@ -171,19 +214,19 @@ impl Default for Renderers {
 }
 
 impl Renderers {
-    /// Both renderers, empty.
+    /// All renderers, empty.
     pub fn new() -> Self {
         Renderers {
-            q16: Box::new(DemoScanline::new()),
-            f32: Box::new(DemoScanline::new()),
+            q16: Methods::new(),
+            f32: Methods::new(),
         }
     }
 
-    /// RAM of the renderer that draws in `format` ([`Scanline::RAM_BYTES`]).
-    pub fn ram_bytes(format: Format) -> usize {
+    /// RAM of the renderer that draws with `algo` in `format`.
+    pub fn ram_bytes(format: Format, algo: Algo) -> usize {
         match format {
-            Format::Q16_16 => DemoScanline::<Q16_16>::RAM_BYTES,
-            Format::F32 => DemoScanline::<f32>::RAM_BYTES,
+            Format::Q16_16 => Methods::<Q16_16>::ram_bytes(algo),
+            Format::F32 => Methods::<f32>::ram_bytes(algo),
         }
     }
 }
@@ -210,14 +253,38 @@ where
     D: DrawTarget<Color = Rgb565>,
     D::Error: core::fmt::Debug,
 {
-    match (view.algo(), view.format) {
-        (Algo::Scanline, Format::Q16_16) => render_with(&mut renderers.q16, view, model, display),
-        (Algo::Scanline, Format::F32) => render_with(&mut renderers.f32, view, model, display),
+    match view.format {
+        Format::Q16_16 => render_in(&mut renderers.q16, view, model, display),
+        Format::F32 => render_in(&mut renderers.f32, view, model, display),
     }
 }
 
-fn render_with<N, D, const W: usize, const P: usize, const E: usize, const A: usize>(
-    renderer: &mut Scanline<N, W, P, E, A>,
+fn render_in<N, D>(
+    m: &mut Methods<N>,
+    view: &View,
+    model: Option<&LoadedModel>,
+    display: &mut D,
+) -> Frame
+where
+    N: zrow_scenes::Format,
+    D: DrawTarget<Color = Rgb565>,
+    D::Error: core::fmt::Debug,
+{
+    match view.algo().resolve() {
+        Algo::Scanline | Algo::Auto => render_with(made(&mut m.scanline), view, model, display),
+        Algo::ZBuffer => render_with(made(&mut m.zbuffer), view, model, display),
+        Algo::DepthSort => render_with(made(&mut m.depth_sort), view, model, display),
+        Algo::Bsp => render_with(made(&mut m.bsp), view, model, display),
+    }
+}
+
+/// The renderer in `slot`, made now if it was not yet.
+fn made<R: Default>(slot: &mut Option<Box<R>>) -> &mut R {
+    slot.get_or_insert_with(Box::default)
+}
+
+fn render_with<N, D, R: Renderer<N>>(
+    renderer: &mut R,
     view: &View,
     model: Option<&LoadedModel>,
     display: &mut D,
@@ -297,7 +364,7 @@ pub fn status_text(view: &View, frame: &Frame, time: Duration) -> [String; 2] {
             format!(
                 "{t} {} polys RAM {}K",
                 stats.polygons,
-                Renderers::ram_bytes(view.format).div_ceil(1024)
+                Renderers::ram_bytes(view.format, view.algo()).div_ceil(1024)
             )
         }
         Err(e) => format!("error: {e}"),
@@ -527,8 +594,48 @@ mod tests {
         assert_eq!(view.scene, 0);
         view.apply(Action::Step);
         assert!(view.paused && view.angle == STEP);
+        for &(_, algo) in &Algo::ALL[1..] {
+            view.apply(Action::NextMethod);
+            assert_eq!(view.algo(), algo);
+        }
         view.apply(Action::NextMethod);
         assert_eq!(view.algo(), Algo::Scanline);
+    }
+
+    /// `m` cycles through every method; each draws the scan-line method's picture of every
+    /// demo scene (their tables are big: a thread with a big stack builds them).
+    #[test]
+    fn every_method_draws_the_same_demo_frames() {
+        std::thread::Builder::new()
+            .stack_size(256 << 20)
+            .spawn(|| {
+                let mut renderers = Renderers::new();
+                let mut view = View::default();
+                for _ in 0..zrow_scenes::DEMOS.len() {
+                    let mut want = new_display();
+                    render(&mut renderers, &view, None, &mut want)
+                        .result
+                        .unwrap();
+                    for _ in 1..Algo::ALL.len() {
+                        view.apply(Action::NextMethod);
+                        let mut got = new_display();
+                        let frame = render(&mut renderers, &view, None, &mut got);
+                        assert!(frame.result.is_ok(), "{view:?}: {:?}", frame.result);
+                        let px = |d: &SimulatorDisplay<Rgb565>| {
+                            (0..SIZE as i32)
+                                .flat_map(|y| (0..SIZE as i32).map(move |x| Point::new(x, y)))
+                                .map(|p| d.get_pixel(p))
+                                .collect::<Vec<_>>()
+                        };
+                        assert!(px(&want) == px(&got), "{view:?}");
+                    }
+                    view.apply(Action::NextMethod);
+                    view.apply(Action::NextScene);
+                }
+            })
+            .unwrap()
+            .join()
+            .unwrap();
     }
 
     #[test]

@@ -134,8 +134,8 @@ pub fn render_model_image(
     format: Format,
 ) -> Result<Image, SimError> {
     match (algo, format) {
-        (Algo::Scanline, Format::Q16_16) => scanline::<Q16_16>(model, view, width, height),
-        (Algo::Scanline, Format::F32) => scanline::<f32>(model, view, width, height),
+        (algo, Format::Q16_16) => model_image::<Q16_16>(model, view, width, height, algo),
+        (algo, Format::F32) => model_image::<f32>(model, view, width, height, algo),
     }
 }
 
@@ -192,16 +192,17 @@ pub(crate) fn with_scene<N: Scalar, R>(
     })
 }
 
-fn scanline<N: Scalar + Send + Sync>(
+fn model_image<N: Scalar + Send + Sync>(
     model: &LoadedModel,
     view: &View,
     width: u16,
     height: u16,
+    algo: Algo,
 ) -> Result<Image, SimError> {
     with_scene::<N, _>(model, view, width, height, |scene, cfg| {
         let req = measure(model, scene, cfg)?;
         check_capacity(&req).map_err(|e| blame(model, e))?;
-        draw(scene, cfg, |e| blame(model, e))
+        draw(algo, scene, cfg, |e| blame(model, e))
     })?
 }
 

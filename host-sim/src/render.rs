@@ -14,7 +14,8 @@
 use crate::error::SimError;
 use crate::off::OffScene;
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
-use zrow::{Config, Face, FrameBuffer, Mesh, RenderError, Requirements, Scalar, Scanline};
+use zrow::Scanline;
+use zrow::{Config, Face, FrameBuffer, Mesh, RenderError, Renderer, Requirements, Scalar};
 use zrow::{Scene, ScreenScene, Table, Q16_16};
 
 /// Widest frame the host renders (zrow's largest viewport).
@@ -26,19 +27,56 @@ pub const HOST_EDGES: usize = 49152;
 /// Active-list capacity of the host renderer (polygons crossing one row).
 pub const HOST_ACTIVE: usize = 4096;
 
+/// Pieces (polygons plus split parts) the host's depth-sort and BSP can hold.
+pub const HOST_PIECES: usize = 65000;
+/// Deepest BSP tree the host builds.
+pub const HOST_BSP_DEPTH: usize = 16384;
+
 /// The scan-line renderer at the host's capacities.
 pub type HostScanline<N> = Scanline<N, HOST_WIDTH, HOST_POLYGONS, HOST_EDGES, HOST_ACTIVE>;
+/// The z-buffer at the host's largest frame.
+pub type HostZBuffer<N> = zrow::ZBuffer<N, HOST_WIDTH, HOST_WIDTH>;
+/// Depth-sort at the host's capacities.
+pub type HostDepthSort<N> =
+    zrow::depthsort::DepthSort<N, HOST_WIDTH, HOST_POLYGONS, HOST_EDGES, HOST_PIECES>;
+/// The BSP tree at the host's capacities.
+pub type HostBsp<N> =
+    zrow::bsp::Bsp<N, HOST_WIDTH, HOST_POLYGONS, HOST_EDGES, HOST_PIECES, HOST_BSP_DEPTH>;
 
-/// A hidden-surface method, by its `--algo` name.
+/// A hidden-surface method, by its `--algo` name (GUIDE §2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Algo {
     /// The scan-line method (`zrow::Scanline`).
     Scanline,
+    /// The z-buffer (`zrow::ZBuffer`).
+    ZBuffer,
+    /// Depth-sort (`zrow::depthsort::DepthSort`).
+    DepthSort,
+    /// The BSP tree (`zrow::bsp::Bsp`).
+    Bsp,
+    /// The cheapest exact method for the scene ([`Algo::resolve`]).
+    Auto,
 }
 
 impl Algo {
     /// Every accepted method with its name, in the order `--help` lists them.
-    pub const ALL: &'static [(&'static str, Algo)] = &[("scanline", Algo::Scanline)];
+    pub const ALL: &'static [(&'static str, Algo)] = &[
+        ("scanline", Algo::Scanline),
+        ("zbuffer", Algo::ZBuffer),
+        ("depth-sort", Algo::DepthSort),
+        ("bsp", Algo::Bsp),
+        ("auto", Algo::Auto),
+    ];
+
+    /// The method `auto` stands for: the scan-line method, which is exact, streams rows and
+    /// was the fastest exact method at every size in the comparison (docs/methods/foley.md).
+    /// Every other name stands for itself.
+    pub fn resolve(self) -> Algo {
+        match self {
+            Algo::Auto => Algo::Scanline,
+            a => a,
+        }
+    }
 
     /// The method called `name`, if there is one.
     pub fn from_name(name: &str) -> Option<Self> {
@@ -148,9 +186,9 @@ pub fn render_screen(
     algo: Algo,
     format: Format,
 ) -> Result<Image, SimError> {
-    match (algo, format) {
-        (Algo::Scanline, Format::Q16_16) => scanline::<Q16_16>(scene, width, height),
-        (Algo::Scanline, Format::F32) => scanline::<f32>(scene, width, height),
+    match format {
+        Format::Q16_16 => screen::<Q16_16>(scene, width, height, algo),
+        Format::F32 => screen::<f32>(scene, width, height, algo),
     }
 }
 
@@ -223,10 +261,11 @@ pub(crate) fn check_capacity(req: &Requirements) -> Result<(), zrow::Error> {
     Ok(())
 }
 
-fn scanline<N: Scalar + Send + Sync>(
+fn screen<N: Scalar + Send + Sync>(
     scene: &OffScene,
     width: u16,
     height: u16,
+    algo: Algo,
 ) -> Result<Image, SimError> {
     let req = measure::<N>(scene, width, height)?;
     check_capacity(&req).map_err(|e| core_error(scene, e))?;
@@ -234,13 +273,28 @@ fn scanline<N: Scalar + Send + Sync>(
     let faces = faces(scene);
     let screen = screen_scene(&vertices, &faces);
     let cfg = Config::screen(width, height);
-    draw(&screen, &cfg, |e| core_error(scene, e))
+    draw(algo, &screen, &cfg, |e| core_error(scene, e))
 }
 
-/// Draws `scene` with [`HostScanline`] into a new [`Image`], on a thread of its own (see the
-/// module doc); `blame` turns a zrow error into the caller's message. Measure and
-/// [`check_capacity`] first: this does not.
+/// Draws `scene` with method `algo` at the host's capacities into a new [`Image`], on a thread
+/// of its own (see the module doc); `blame` turns a zrow error into the caller's message.
+/// Measure and [`check_capacity`] first: this does not.
 pub(crate) fn draw<N: Scalar + Send + Sync, S: Scene<N> + Sync>(
+    algo: Algo,
+    scene: &S,
+    cfg: &Config,
+    blame: impl FnOnce(zrow::Error) -> SimError,
+) -> Result<Image, SimError> {
+    match algo.resolve() {
+        Algo::Scanline | Algo::Auto => draw_with::<N, S, HostScanline<N>>(scene, cfg, blame),
+        Algo::ZBuffer => draw_with::<N, S, HostZBuffer<N>>(scene, cfg, blame),
+        Algo::DepthSort => draw_with::<N, S, HostDepthSort<N>>(scene, cfg, blame),
+        Algo::Bsp => draw_with::<N, S, HostBsp<N>>(scene, cfg, blame),
+    }
+}
+
+/// [`draw`] with one method's type.
+fn draw_with<N: Scalar + Send + Sync, S: Scene<N> + Sync, R: Renderer<N> + Default>(
     scene: &S,
     cfg: &Config,
     blame: impl FnOnce(zrow::Error) -> SimError,
@@ -250,13 +304,13 @@ pub(crate) fn draw<N: Scalar + Send + Sync, S: Scene<N> + Sync>(
     let mut frame = FrameBuffer::new(&mut pixels, width as usize);
     // Room for the renderer, a copy or two of it that an unoptimised build makes while
     // constructing it, and the render's own frames.
-    let stack = 3 * HostScanline::<N>::RAM_BYTES + (4 << 20);
+    let stack = 3 * R::RAM_BYTES + (4 << 20);
     let result = std::thread::scope(|s| {
         let worker = std::thread::Builder::new()
             .name("zrow-render".into())
             .stack_size(stack)
             .spawn_scoped(s, || {
-                let mut renderer = HostScanline::<N>::new();
+                let mut renderer = R::default();
                 renderer.render(scene, cfg, &mut frame).map(|_| ())
             })
             .map_err(SimError::Thread)?;
@@ -304,7 +358,7 @@ mod tests {
             assert_eq!(Format::from_name(n), Some(f));
             assert_eq!(f.name(), n);
         }
-        assert_eq!(Algo::from_name("zbuffer"), None);
+        assert_eq!(Algo::from_name("painter"), None);
     }
 
     const SEED002: &str = "OFF\n6 2 0\n0 0 6\n6 0 0\n0 6 0\n2 0 6\n6 0 6\n4 4 0\n\

@@ -1,5 +1,6 @@
 //! Golden frames: every scene in `scenes/` rendered at 240x240 with each method and number
-//! format, compared pixel for pixel with `host-sim/tests/golden/NAME.FORMAT.png`.
+//! format, compared pixel for pixel with `host-sim/tests/golden/NAME.FORMAT.png` — one
+//! reference for all methods, since every exact method must draw the same picture.
 //!
 //! To accept a deliberate change, re-bless the references and review the new PNGs:
 //!
@@ -44,17 +45,18 @@ fn check(scene_path: &Path, algo: Algo, format: Format, bless: bool) -> Result<(
         .unwrap()
         .to_string_lossy()
         .into_owned();
-    // Method names join the file name once there is more than one method.
-    let tag = match algo {
-        Algo::Scanline => format.name().to_owned(),
-    };
+    // One reference per scene and format for every method: exact methods draw the same
+    // picture (GUIDE §4.2). Only the scan-line method blesses.
+    let tag = format.name();
     let reference = golden_dir().join(format!("{stem}.{tag}.png"));
-    let actual_path = golden_dir().join(format!("{stem}.{tag}.actual.png"));
+    let actual_path = golden_dir().join(format!("{stem}.{tag}.{}.actual.png", algo.name()));
+    let bless = bless && algo == Algo::Scanline;
 
     let data = std::fs::read(scene_path).map_err(|e| format!("{stem}: {e}"))?;
     let scene = zrow_sim::off::parse(&stem, &data).map_err(|e| e.to_string())?;
     let image = render_screen(&scene, SIZE, SIZE, algo, format).map_err(|e| e.to_string())?;
     compare_golden(&image, &reference, &actual_path, bless)
+        .map_err(|e| format!("{}: {e}", algo.name()))
 }
 
 #[test]

@@ -127,7 +127,6 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const Q: usize, 
             &mut self.depth,
             &mut self.intensity,
             sink,
-            false,
         )
         .map_err(RenderError::Sink)?;
         Ok(stats)

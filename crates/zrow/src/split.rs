@@ -348,7 +348,6 @@ pub fn paint_rows<N: Scalar, K: RowSink<N>, const P: usize, const E: usize, cons
     depth: &mut [N],
     intensity: &mut [embedded_graphics_core::pixelcolor::Rgb565],
     sink: &mut K,
-    cull_back: bool,
 ) -> Result<(), K::Error> {
     let w = (cfg.width as usize).min(depth.len()).min(intensity.len());
     for y in 0..cfg.height as i32 {
@@ -360,9 +359,6 @@ pub fn paint_rows<N: Scalar, K: RowSink<N>, const P: usize, const E: usize, cons
                 continue;
             }
             let s = t.get(p.poly as usize);
-            if cull_back && s.back {
-                continue;
-            }
             let (xl, xr) = pieces.span(t, k, y, w as i32);
             paint_span(
                 &mut depth[..w],

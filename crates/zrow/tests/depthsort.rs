@@ -48,3 +48,27 @@ fn random_and_dense_scenes_equal_the_reference() {
         check::<f32>(&scenes::dense(&mut rng, n, 48.0, 40.0), 48, 40);
     }
 }
+
+#[test]
+fn too_few_pieces_is_a_typed_error_before_any_row() {
+    use zrow::{Error, RenderError, Table};
+    let p = scenes::cyclic(0.0);
+    let cfg = Config::screen(48, 48);
+    let err = p
+        .render_with(
+            &mut *Box::new(DepthSort::<Q16_16, 48, 8, 64, 3>::new()),
+            &cfg,
+        )
+        .unwrap_err();
+    // `render_with`'s capture asserts on any row received, so none was sent.
+    assert!(
+        matches!(
+            err,
+            RenderError::Scene(Error::Capacity {
+                table: Table::Pieces,
+                ..
+            })
+        ),
+        "{err:?}"
+    );
+}
