@@ -16,36 +16,38 @@
 //!    scene order — a scan-line z-buffer, so ties go to the polygon first in the scene. Each
 //!    pixel remembers which polygon it shows (`owner`).
 //! 2. **The coverage list**: every translucent polygon (`0 < alpha < 255`) crossing the row adds
-//!    a [`Fragment`] for each pixel of its span where it is *visible over the opaque surface*
-//!    by the tie rule every method uses ([`crate::polygons::PolygonTable::beats`]): nearer, or
+//!    a [`Fragment`](crate::abuffer::Fragment) for each pixel of its span where it is *visible
+//!    over the opaque surface* by the tie rule every method uses
+//!    ([`crate::polygons::PolygonTable::beats`]): nearer, or
 //!    exactly as near and earlier in the scene than the polygon that owns the pixel. Where no
 //!    opaque polygon covers the pixel every fragment counts. A face with `alpha == 0` draws
 //!    nothing at all.
 //! 3. **Resolve**: the row's fragments are sorted by (column, depth far → near, and at equal
 //!    depth the *earlier* polygon last — it counts as nearer, as it wins a tie) and blended
-//!    over the opaque colour back to front with [`blend`].
+//!    over the opaque colour back to front with [`blend`](crate::abuffer::blend).
 //!
 //! Translucent faces do not write depth: the row's `depth[x]` is the opaque surface's (the
 //! format's maximum where no opaque polygon covers the pixel).
 //!
-//! **Exactness.** Coverage and depth come from the shared [`PolygonTable`] — exact top-left
-//! spans, depth started at each span's left end from the polygon's
-//! [`crate::number::DepthPlane`] and stepped by `dzdx` (in Q16.16 the same bits as every other
-//! method). With every face opaque, step 2 and 3 do nothing and the method is a scan-line
+//! **Exactness.** Coverage and depth come from the shared
+//! [`PolygonTable`](crate::polygons::PolygonTable) — exact top-left spans, depth started at each
+//! span's left end from the polygon's [`crate::number::DepthPlane`] and stepped by `dzdx` (in
+//! Q16.16 the same bits as every other method). With every face opaque, step 2 and 3 do nothing and the method is a scan-line
 //! z-buffer: the same picture as the z-buffer, bit for bit, and as the exact reference.
-//! Blending is integer arithmetic with one rounding to nearest per channel, so the result does
-//! not depend on the number format.
+//! Blending is integer arithmetic with one rounding to nearest per channel, the same in both
+//! number formats.
 //!
 //! **Capacity.** The fragment list holds one row; how many fragments a row needs depends on the
 //! scene. Before the first row is sent every row is checked: the sum of the translucent spans'
 //! widths (clamped to the screen) bounds the row's fragments, and only a row whose bound exceeds
 //! `F` is counted exactly (its opaque surface drawn and its fragments counted, not stored).
-//! A scene that needs more than `F` in some row fails with [`Error::Capacity`] naming
-//! [`Table::Fragments`] and the exact count of the worst row.
+//! A scene that needs more than `F` in some row fails with
+//! [`Error::Capacity`](crate::Error::Capacity) naming [`Table::Fragments`](crate::Table::Fragments)
+//! and the exact count of the worst row.
 //!
 //! **Cost.** Every row asks every polygon whose rows include it for its span
-//! ([`PolygonTable::span`], a few integer divisions): O(rows × polygons) setup work plus the
-//! pixels painted, and a sort of the row's fragments.
+//! ([`PolygonTable::span`](crate::polygons::PolygonTable::span), a few integer divisions):
+//! O(rows × polygons) setup work, plus the pixels painted and a sort of each row's fragments.
 //!
 //! ```
 //! use zrow::abuffer::{blend, ABuffer};
