@@ -7,6 +7,7 @@
 //! 180 0 0
 //! 0 180 0
 //! 3 0 1 2 255 0 0          # `n i0 .. i(n-1) [r g b [a]]`, colours 0..=255, default white
+//! 3 0 1 2 0 0 255 128      # an optional fourth component: alpha, 0..=255, default 255 (opaque)
 //! ```
 //!
 //! The format is read line by line, so every error can name its line: `#` starts a comment
@@ -35,14 +36,17 @@ pub struct OffVertex {
     pub line: usize,
 }
 
-/// One face as read: vertex indices (each checked against the vertex count), its colour and
-/// its line.
+/// One face as read: vertex indices (each checked against the vertex count), its colour, its
+/// opacity and its line.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct OffFace {
     /// Vertex indices, 3..=[`MAX_FACE_VERTICES`] of them.
     pub indices: Vec<u16>,
-    /// 8-bit RGB colour (white when the file gives none; alpha is read and dropped).
+    /// 8-bit RGB colour (white when the file gives none).
     pub color: [u8; 3],
+    /// Opacity, the colour's optional fourth component: 0 = invisible, 255 = opaque (the
+    /// default, also when the file gives no colour). For [`zrow::Face::alpha`].
+    pub alpha: u8,
     /// 1-based line number.
     pub line: usize,
 }
@@ -211,6 +215,11 @@ pub enum OffErrorKind {
         /// The offending text.
         token: String,
     },
+    /// The alpha (fourth colour component) is not an integer in 0..=255.
+    BadAlpha {
+        /// The offending text.
+        token: String,
+    },
     /// Something follows the last face.
     TrailingContent,
     /// The line (outside its comment) is not UTF-8.
@@ -275,6 +284,11 @@ impl fmt::Display for OffErrorKind {
             BadColor { token } => write!(
                 f,
                 "colour value `{}` is not an integer in 0..=255",
+                shown(token)
+            ),
+            BadAlpha { token } => write!(
+                f,
+                "alpha value `{}` is not an integer in 0..=255 (255 = opaque)",
                 shown(token)
             ),
             TrailingContent => write!(f, "unexpected content after the last face"),
@@ -391,10 +405,11 @@ pub fn parse(file: &str, data: &[u8]) -> Result<OffScene, OffError> {
     let mut faces = Vec::with_capacity(nf.min(4096));
     for k in 0..nf {
         let (line, tokens) = next(&|| format!("face {} of {nf}", k + 1))?;
-        let (indices, color) = parse_face(&tokens, nv).map_err(|kind| err(line, kind))?;
+        let (indices, color, alpha) = parse_face(&tokens, nv).map_err(|kind| err(line, kind))?;
         faces.push(OffFace {
             indices,
             color,
+            alpha,
             line,
         });
     }
@@ -465,7 +480,8 @@ fn parse_vertex(tokens: &[&str]) -> Result<[f32; 3], OffErrorKind> {
     Ok(p)
 }
 
-fn parse_face(tokens: &[&str], nv: usize) -> Result<(Vec<u16>, [u8; 3]), OffErrorKind> {
+/// A face line: its indices, its colour and its alpha (255 when not given).
+fn parse_face(tokens: &[&str], nv: usize) -> Result<(Vec<u16>, [u8; 3], u8), OffErrorKind> {
     let integer = |what: &'static str, t: &str| {
         t.parse::<u64>().map_err(|_| OffErrorKind::NotANumber {
             what,
@@ -496,20 +512,26 @@ fn parse_face(tokens: &[&str], nv: usize) -> Result<(Vec<u16>, [u8; 3]), OffErro
         indices.push(index as u16); // < nv <= MAX_VERTICES, so it fits
     }
     let color = &rest[n..];
-    let rgb = match color.len() {
-        0 => [255; 3],
+    let (rgb, alpha) = match color.len() {
+        0 => ([255; 3], 255),
         3 | 4 => {
-            let mut c = [0u8; 4];
+            let mut c = [0u8; 3];
             for (slot, t) in c.iter_mut().zip(color) {
                 *slot = t.parse().map_err(|_| OffErrorKind::BadColor {
                     token: (*t).to_owned(),
                 })?;
             }
-            [c[0], c[1], c[2]]
+            let alpha = match color.get(3) {
+                None => 255,
+                Some(t) => t.parse().map_err(|_| OffErrorKind::BadAlpha {
+                    token: (*t).to_owned(),
+                })?,
+            };
+            (c, alpha)
         }
         found => return Err(OffErrorKind::ColorArity { found }),
     };
-    Ok((indices, rgb))
+    Ok((indices, rgb, alpha))
 }
 
 #[cfg(test)]
@@ -546,8 +568,27 @@ mod tests {
                     0 0 0\n1 0 0 # trailing comment\n  \n0 1 0\n1 1 0\n\
                     3 0 1 2 # white\n3 1 3 2 10 20 30 40\n# end\n");
         assert_eq!(s.faces[0].color, [255, 255, 255]);
+        assert_eq!(s.faces[0].alpha, 255);
         assert_eq!(s.faces[1].color, [10, 20, 30]);
+        assert_eq!(s.faces[1].alpha, 40);
         assert_eq!(s.faces[1].line, 10);
+    }
+
+    #[test]
+    fn alpha_is_the_optional_fourth_component_and_defaults_to_opaque() {
+        let face = |colour: &str| {
+            let s = ok(&format!(
+                "OFF\n3 1 0\n0 0 1\n10 0 1\n0 10 1\n3 0 1 2{colour}\n"
+            ));
+            let f = &s.faces[0];
+            (f.color, f.alpha)
+        };
+        assert_eq!(face(""), ([255; 3], 255));
+        assert_eq!(face(" 255 0 0"), ([255, 0, 0], 255));
+        assert_eq!(face(" 0 0 255 128"), ([0, 0, 255], 128));
+        assert_eq!(face(" 1 2 3 0"), ([1, 2, 3], 0));
+        assert_eq!(face(" 1 2 3 255 # opaque"), ([1, 2, 3], 255));
+        assert_eq!(face(" 1 2 3 007"), ([1, 2, 3], 7));
     }
 
     #[test]
@@ -632,6 +673,30 @@ mod tests {
             (
                 "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 0 0\n",
                 "t.off:6: face colour must be `r g b` or `r g b a`, found 2 values",
+            ),
+            (
+                "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 0 0 0 0 0\n",
+                "t.off:6: face colour must be `r g b` or `r g b a`, found 5 values",
+            ),
+            (
+                "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 0 0 0 256\n",
+                "t.off:6: alpha value `256` is not an integer in 0..=255 (255 = opaque)",
+            ),
+            (
+                "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2 9 9 9 0.5\n",
+                "t.off:7: alpha value `0.5` is not an integer in 0..=255",
+            ),
+            (
+                "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 0 0 0 -1\n",
+                "t.off:6: alpha value `-1` is not an integer",
+            ),
+            (
+                "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 0 0 0 opaque\n",
+                "t.off:6: alpha value `opaque` is not an integer",
+            ),
+            (
+                "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 0 300 0 128\n",
+                "t.off:6: colour value `300` is not an integer in 0..=255",
             ),
             (
                 "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2\n",
