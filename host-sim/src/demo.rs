@@ -63,6 +63,9 @@ pub type DemoZBuffer<N> = zrow::ZBuffer<N, { SIZE as usize }, { SIZE as usize }>
 /// The demo's depth-sort.
 pub type DemoDepthSort<N> =
     zrow::depthsort::DepthSort<N, { SIZE as usize }, DEMO_POLYGONS, DEMO_EDGES, DEMO_PIECES>;
+/// The demo's A-buffer (fragments per row).
+pub type DemoABuffer<N> =
+    zrow::abuffer::ABuffer<N, { SIZE as usize }, DEMO_POLYGONS, DEMO_EDGES, 4096>;
 /// The demo's BSP tree.
 pub type DemoBsp<N> =
     zrow::bsp::Bsp<N, { SIZE as usize }, DEMO_POLYGONS, DEMO_EDGES, DEMO_PIECES, DEMO_BSP_DEPTH>;
@@ -178,6 +181,7 @@ pub struct Methods<N> {
     zbuffer: Option<Box<DemoZBuffer<N>>>,
     depth_sort: Option<Box<DemoDepthSort<N>>>,
     bsp: Option<Box<DemoBsp<N>>>,
+    abuffer: Option<Box<DemoABuffer<N>>>,
 }
 
 impl<N: zrow::Scalar> Methods<N> {
@@ -187,6 +191,7 @@ impl<N: zrow::Scalar> Methods<N> {
             zbuffer: None,
             depth_sort: None,
             bsp: None,
+            abuffer: None,
         }
     }
 
@@ -197,6 +202,7 @@ impl<N: zrow::Scalar> Methods<N> {
             Algo::ZBuffer => DemoZBuffer::<N>::RAM_BYTES,
             Algo::DepthSort => DemoDepthSort::<N>::RAM_BYTES,
             Algo::Bsp => DemoBsp::<N>::RAM_BYTES,
+            Algo::ABuffer => DemoABuffer::<N>::RAM_BYTES,
         }
     }
 }
@@ -275,6 +281,7 @@ where
         Algo::ZBuffer => render_with(made(&mut m.zbuffer), view, model, display),
         Algo::DepthSort => render_with(made(&mut m.depth_sort), view, model, display),
         Algo::Bsp => render_with(made(&mut m.bsp), view, model, display),
+        Algo::ABuffer => render_with(made(&mut m.abuffer), view, model, display),
     }
 }
 

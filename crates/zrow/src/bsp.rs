@@ -22,12 +22,12 @@
 //! every view; here the scenes move, so the tree is rebuilt per frame.
 //!
 //! Made exact as depth-sort is ([`crate::split`]): "in front of the plane" is decided per
-//! sample by [`PolygonTable::beats`] (ties to the polygon first in the scene), and splits are
+//! sample by [`PolygonTable::beats`](crate::polygons::PolygonTable::beats) (ties to the polygon first in the scene), and splits are
 //! sample sets, not new vertices. Then, for two pieces on opposite sides of a node, the one on
 //! the viewer's side is nearer at every sample they share, so the in-order walk paints exactly
 //! the per-sample nearest surface.
 //!
-//! Bounds: the tree's depth is below `D` (deeper is a typed [`Table::BspDepth`] error, and
+//! Bounds: the tree's depth is below `D` (deeper is a typed [`Table::BspDepth`](crate::Table::BspDepth) error, and
 //! both the insertion and the walk use explicit stacks of that size — no recursion), pieces at
 //! most `Q`. Inserting a closed mesh in its own order makes a deep tree (each face lies in
 //! front of the ones before it): the 1,000-face torus needs a depth in the hundreds. Every

@@ -21,7 +21,7 @@
 //!
 //! Made exact: every test is decided on samples, not on vertices. Extents are the columns,
 //! rows and depths of the samples a piece covers; "entirely on one side of a plane" means
-//! [`PolygonTable::beats`] holds at every sample (checked at both ends of each row's span:
+//! [`PolygonTable::beats`](crate::polygons::PolygonTable::beats) holds at every sample (checked at both ends of each row's span:
 //! the difference of two planes is linear); "projections overlap" means a shared sample.
 //! Splits are [`crate::split`] pieces — sample sets, no new vertices — so the pieces partition
 //! their polygon exactly. The order found is then right for every pair of pieces that share a

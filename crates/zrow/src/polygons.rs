@@ -4,15 +4,15 @@
 //! The scan-line method walks polygons once, top to bottom, through its own edge table. The
 //! other methods come back to a polygon many times and in any order — a band of rows
 //! (tiled z-buffer), an area of the screen (Warnock), another polygon's plane (depth-sort,
-//! BSP) — so they keep a [`PolygonTable`] and ask it:
+//! BSP) — so they keep a [`PolygonTable`](crate::polygons::PolygonTable) and ask it:
 //!
-//! - [`PolygonTable::covers`]: does polygon `i` cover the sample of pixel (x, y)? Exactly the
+//! - [`PolygonTable::covers`](crate::polygons::PolygonTable::covers): does polygon `i` cover the sample of pixel (x, y)? Exactly the
 //!   top-left rule, as integer edge functions: a left edge owns a sample on it, a right edge
 //!   does not, and the row range (first and last sample row) stands for the horizontal edges.
-//! - [`PolygonTable::span`] and [`PolygonTable::walk`]: the covered columns `xl..xr` of a row
+//! - [`PolygonTable::span`](crate::polygons::PolygonTable::span) and [`PolygonTable::walk`](crate::polygons::PolygonTable::walk): the covered columns `xl..xr` of a row
 //!   (exactly the scan-line method's, from the same [`crate::raster::Dda`]s), at one row or row after row.
-//! - [`PolygonTable::beats`]: is `p` visible over `q` at a sample — nearer, or as near and
-//!   first in the scene (GUIDE §1)? Depth comes from the same [`DepthPlane`] bits every method
+//! - [`PolygonTable::beats`](crate::polygons::PolygonTable::beats): is `p` visible over `q` at a sample — nearer, or as near and
+//!   first in the scene (GUIDE §1)? Depth comes from the same [`DepthPlane`](crate::number::DepthPlane) bits every method
 //!   uses, so every method breaks every tie the same way.
 //!
 //! Polygons keep their scene order: index `i` in the table is the `i`-th polygon the scene

@@ -4,8 +4,8 @@
 //! (seed 001: "one of them must be split by using the plane of the other one"). In screen
 //! space the two planes meet along the line where their depths are equal, so the part of `P`
 //! in front of `Q`'s plane is exactly the set of `P`'s samples where `P` beats `Q`
-//! ([`PolygonTable::beats`]: nearer, or as near and first in the scene). zrow keeps a piece as
-//! that set, not as new vertices: a [`Piece`] is a polygon, or a piece of it, restricted to
+//! ([`PolygonTable::beats`](crate::polygons::PolygonTable::beats): nearer, or as near and first in the scene). zrow keeps a piece as
+//! that set, not as new vertices: a [`Piece`](crate::split::Piece) is a polygon, or a piece of it, restricted to
 //! one side of another polygon's plane. Nothing is rounded, so
 //!
 //! - the two pieces of a split partition the parent's samples exactly (no crack, no overlap:
