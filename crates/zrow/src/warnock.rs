@@ -353,11 +353,10 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, 
                 self.scan_convert(f, &r, e.poly as usize);
             }
             _ => {
-                if let Some(s) = self.front_surrounding(start, &r) {
-                    self.fill(f, &r, Some(s));
-                } else if r.x1 - r.x0 == 1 && r.y1 - r.y0 == 1 {
-                    // One pixel: every listed polygon covers its centre (the classification
-                    // is exact there); the one that beats all others is visible.
+                if r.x1 - r.x0 == 1 && r.y1 - r.y0 == 1 {
+                    // (d) One pixel: every listed polygon covers its centre (the
+                    // classification is exact there); the one that beats all others is
+                    // visible.
                     let mut best: Option<usize> = None;
                     for e in self.list.get(start..).unwrap_or(&[]) {
                         let i = e.poly as usize;
@@ -368,6 +367,8 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, 
                         }
                     }
                     self.fill(f, &r, best);
+                } else if let Some(s) = self.front_surrounding(start, &r) {
+                    self.fill(f, &r, Some(s));
                 } else {
                     let (end, half) = (self.list.len(), size / 2);
                     for (dx, dy) in [(0, 0), (half, 0), (0, half), (half, half)] {

@@ -244,6 +244,154 @@ fn three_rectangles_picture() {
     each::<f32>(&p, &cfg, &want);
 }
 
+/// A decal on a tilted wall, exactly coplanar (Q16.16 gives coplanar polygons identical
+/// depth bits): every one of its samples is a depth tie, so it shows where it comes first in
+/// the scene and nowhere where it comes second — in every decision (hidden test, front test,
+/// pixel rule) at every band size.
+#[test]
+fn coplanar_ties_go_to_the_first_polygon() {
+    // Depth 2 + x/4: exact in both formats.
+    let wall = vec![
+        [0.0, 0.0, 2.0],
+        [32.0, 0.0, 10.0],
+        [32.0, 24.0, 10.0],
+        [0.0, 24.0, 2.0],
+    ];
+    let decal = vec![
+        [8.0, 6.0, 4.0],
+        [20.0, 6.0, 7.0],
+        [20.0, 18.0, 7.0],
+        [8.0, 18.0, 4.0],
+    ];
+    let cfg = Config::screen(32, 24);
+    for decal_first in [true, false] {
+        let p = if decal_first {
+            Polys::new(vec![decal.clone(), wall.clone()])
+        } else {
+            Polys::new(vec![wall.clone(), decal.clone()])
+        };
+        let decal_index = if decal_first { 0 } else { 1 };
+        check_all_bands::<Q16_16>(&p, &cfg, "decal");
+        check_all_bands::<f32>(&p, &cfg, "decal");
+        for cap in [
+            warnock::<Q16_16, 1>(&p, &cfg).0,
+            warnock::<Q16_16, 2>(&p, &cfg).0,
+            warnock::<Q16_16, 8>(&p, &cfg).0,
+            warnock::<Q16_16, 32>(&p, &cfg).0,
+        ] {
+            for y in 0..24 {
+                for x in 0..32 {
+                    let on_decal = (8..20).contains(&x) && (6..18).contains(&y);
+                    let want = if on_decal && decal_first {
+                        0
+                    } else {
+                        1 - decal_index
+                    };
+                    assert_eq!(
+                        index_of(cap.at(x, y)),
+                        Some(want),
+                        "({x}, {y}), decal first: {decal_first}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// A tilted decal behind a flat wall except along its left column, where it touches it
+/// (depth 5 − 1/8 + (x − 8)/4 from x = 8 to 20: exactly 5 at column 8's centres, in both
+/// formats). Only those ties can show it, and only when it is first in the scene: the hidden
+/// test (`zmin` of the decal equal to the wall's `zmax`) and the front test (the wall ties at
+/// two corners) must both keep it.
+#[test]
+fn a_decal_touching_a_wall_shows_only_where_it_ties_first() {
+    let wall = vec![
+        [0.0, 0.0, 5.0],
+        [32.0, 0.0, 5.0],
+        [32.0, 24.0, 5.0],
+        [0.0, 24.0, 5.0],
+    ];
+    let decal = vec![
+        [8.0, 6.0, 4.875],
+        [20.0, 6.0, 7.875],
+        [20.0, 18.0, 7.875],
+        [8.0, 18.0, 4.875],
+    ];
+    let cfg = Config::screen(32, 24);
+    for decal_first in [true, false] {
+        let p = if decal_first {
+            Polys::new(vec![decal.clone(), wall.clone()])
+        } else {
+            Polys::new(vec![wall.clone(), decal.clone()])
+        };
+        check_all_bands::<Q16_16>(&p, &cfg, "touching decal");
+        check_all_bands::<f32>(&p, &cfg, "touching decal");
+        let wall_index = if decal_first { 1 } else { 0 };
+        fn each<N: Scalar>(p: &Polys, cfg: &Config, decal_first: bool, wall_index: usize) {
+            for cap in [
+                warnock::<N, 1>(p, cfg).0,
+                warnock::<N, 2>(p, cfg).0,
+                warnock::<N, 8>(p, cfg).0,
+                warnock::<N, 32>(p, cfg).0,
+            ] {
+                for y in 0..24 {
+                    for x in 0..32 {
+                        let tie = x == 8 && (6..18).contains(&y);
+                        let want = if tie && decal_first { 0 } else { wall_index };
+                        assert_eq!(
+                            index_of(cap.at(x, y)),
+                            Some(want),
+                            "{} ({x}, {y}), decal first: {decal_first}",
+                            N::NAME
+                        );
+                    }
+                }
+            }
+        }
+        each::<Q16_16>(&p, &cfg, decal_first, wall_index);
+        each::<f32>(&p, &cfg, decal_first, wall_index);
+    }
+}
+
+/// Ties on a steep sliver whose depth wraps inside its own box (so it is settled pixel by
+/// pixel): along its upper edge it is exactly as deep as a flat wall, behind it elsewhere.
+/// Pixels decided by the pixel rule must break those ties by scene order, as the z-buffer.
+#[test]
+fn ties_with_a_wrapping_sliver_follow_scene_order() {
+    let wall = vec![
+        [0.0, 0.0, 10.0],
+        [64.0, 0.0, 10.0],
+        [64.0, 64.0, 10.0],
+        [0.0, 64.0, 10.0],
+    ];
+    let sliver = vec![
+        [10.0, 0.0, 10.0],
+        [64.0, 54.0, 10.0],
+        [64.0, 53.0, 10.0 + 4000.0],
+    ];
+    let cfg = Config::screen(64, 64);
+    for sliver_first in [true, false] {
+        let p = if sliver_first {
+            Polys::new(vec![sliver.clone(), wall.clone()])
+        } else {
+            Polys::new(vec![wall.clone(), sliver.clone()])
+        };
+        check_all_bands::<Q16_16>(&p, &cfg, "wrapping sliver ties");
+        let (cap, _) = warnock::<Q16_16, 16>(&p, &cfg);
+        let shown = cap
+            .color
+            .iter()
+            .filter(|&&c| index_of(c) == Some(0))
+            .count();
+        let shown = if sliver_first { shown } else { 64 * 64 - shown };
+        println!("sliver first: {sliver_first}, sliver pixels: {shown}");
+        assert!(
+            sliver_first == (shown > 20),
+            "sliver first: {sliver_first}, {shown} px"
+        );
+    }
+}
+
 fn scene_of<N: Scalar>(verts: &[Vec3<N>], faces: &[Face]) -> ScreenScene<'static, N>
 where
     N: 'static,
@@ -329,34 +477,46 @@ fn list_capacity_error_comes_before_any_row() {
     assert_eq!(cap.rows_received, 0);
 }
 
-/// Q16.16 depth wraps modulo 2^32 far from a steep polygon: area decisions on such a plane
-/// would be wrong, so they must fall back to pixels. Steep slivers on the diagonal over a
-/// flat background, compared bit for bit with the z-buffer.
+/// Q16.16 depth wraps modulo 2^32 LSB far from a steep polygon: there its stored depths are
+/// not linear, and an area decision on them (the hidden test, the front test at the
+/// corners) would drop the polygon where it is in front. A steep sliver along a diagonal
+/// over a flat background, for several slopes and positions; each must equal the z-buffer
+/// bit for bit (and the reference) at every band size. Without the linearity check every
+/// one of these loses the sliver in some area at B = 16 or 64.
 #[test]
 fn steep_planes_that_wrap_in_q16_16_equal_the_z_buffer() {
-    let mut polys = vec![vec![
-        [0.0, 0.0, 20.0],
-        [64.0, 0.0, 20.0],
-        [64.0, 64.0, 20.0],
-        [0.0, 64.0, 20.0],
-    ]];
-    for (k, slope) in [3000.0f32, -2500.0, 900.0, 12000.0].into_iter().enumerate() {
-        let o = 4.0 * k as f32;
-        // z = 10 + slope·(x − y − o): about 10 along the line x − y = o, wrapping far off it.
-        polys.push(vec![
-            [2.0 + o, 2.0, 10.0],
-            [60.0, 60.0 - o, 10.0],
-            [60.0, 59.0 - o, 10.0 + slope],
-        ]);
-    }
-    let p = Polys::new(polys);
     let cfg = Config::screen(64, 64);
-    check_all_bands::<Q16_16>(&p, &cfg, "steep slivers");
-    let (cap, _) = warnock::<Q16_16, 64>(&p, &cfg);
-    let slivers = (0..64 * 64)
-        .filter(|&k| index_of(cap.color[k]).is_some_and(|i| i > 0))
-        .count();
-    assert!(slivers > 40, "the slivers are visible ({slivers} px)");
+    for (slope, d) in [
+        (2000.0f32, 20.0f32),
+        (4000.0, 10.0),
+        (8000.0, 6.0),
+        (10000.0, 30.0),
+    ] {
+        // Depth 10 on the line x − y = d, 10 + slope one pixel off it: wraps far away.
+        let p = Polys::new(vec![
+            vec![
+                [0.0, 0.0, 20.0],
+                [64.0, 0.0, 20.0],
+                [64.0, 64.0, 20.0],
+                [0.0, 64.0, 20.0],
+            ],
+            vec![
+                [d, 0.0, 10.0],
+                [64.0, 64.0 - d, 10.0],
+                [64.0, 63.0 - d, 10.0 + slope],
+            ],
+        ]);
+        let what = format!("sliver slope {slope}, x - y = {d}");
+        check_all_bands::<Q16_16>(&p, &cfg, &what);
+        check_all_bands::<f32>(&p, &cfg, &what);
+        let (cap, _) = warnock::<Q16_16, 64>(&p, &cfg);
+        let sliver = cap
+            .color
+            .iter()
+            .filter(|&&c| index_of(c) == Some(1))
+            .count();
+        assert!(sliver > 20, "{what}: the sliver is visible ({sliver} px)");
+    }
 }
 
 #[test]
