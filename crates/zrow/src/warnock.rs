@@ -1,67 +1,55 @@
 //! Warnock's area subdivision, seed 000 §2.2.3, seed 001 ("Area Subdivision - Warnock") and
 //! seed 003.
 //!
-//! The seeds' algorithm: a polygon stands in one of four relations to an area of the screen —
-//! **surrounding** (it contains the area), **intersecting**, **contained** (inside the area)
-//! or **disjoint** — found by the min-max (bounding-box) test, the intersection test and the
-//! containment test. For each area a potentially-visible polygon list (PVPL) holds the
-//! non-disjoint polygons, sorted by `zmin`, their least depth within the area; a polygon `P`
-//! with `z_pmin > z_smax` (the greatest depth of a surrounding polygon `S` within the area) is
-//! hidden by `S`, and so is every polygon after it in the list. Then, seed 000 step 3:
-//!
-//! - (a) the list is empty: the area is background;
-//! - (b) one polygon, intersecting or contained: background, then scan-convert its part;
-//! - (c) one polygon, surrounding: fill the area with it;
-//! - case 4 of the seeds: a surrounding polygon is in front of every other one at the four
-//!   corners of the area: fill with it;
-//! - (d) the area is one pixel: the polygon nearest at the pixel's centre;
-//! - otherwise subdivide the area into four and go on with each.
-//!
-//! Surrounding and disjoint polygons stay so in the sub-areas, so only intersecting and
-//! contained ones are classified again.
+//! The seeds' algorithm: a polygon is **surrounding**, **intersecting**, **contained** in or
+//! **disjoint** from an area of the screen, as the min-max (bounding box), intersection and
+//! containment tests find. An area's potentially-visible polygon list (PVPL) holds the
+//! non-disjoint ones sorted by `zmin`, their least depth in the area; a polygon `P` with
+//! `z_pmin > z_smax` (the greatest depth of a surrounding `S` in the area) is hidden by `S`, and
+//! so is every polygon after it. Then (seed 000 step 3): (a) an empty list is background;
+//! (b) one intersecting or contained polygon: background, then its part scan-converted; (c) one
+//! surrounding polygon fills the area; (d) at one pixel, the polygon nearest at its centre;
+//! (case 4 of the seeds) a surrounding polygon in front of all others at the area's four
+//! corners fills it; otherwise the area is cut in four and each quarter goes back to the list
+//! step. Surrounding and disjoint polygons stay so in sub-areas; only the others are
+//! classified again.
 //!
 //! **Streaming.** Rows must leave top to bottom, so the top levels of the quadtree are replaced
 //! by a raster order: the screen is cut into bands of `B` rows, each band into `B`×`B` squares
-//! from left to right (the last ones clipped by the screen's edges), and each square is
-//! subdivided quadtree fashion down to single pixels. A band's rows are drawn in a band buffer
-//! and sent when its last square is done. Each band keeps a list of the polygons that reach
-//! its rows; each area pushes its own PVPL on top of its parent's in one stack
-//! ([`Table::VisibleList`]) and pops it on return.
+//! left to right (the last clipped by the screen's edges), and each square is subdivided
+//! quadtree fashion down to single pixels, in a band buffer whose rows are sent when the band
+//! is done. A band keeps the list of polygons reaching its rows; each area pushes its PVPL on
+//! its parent's in one stack ([`Table::VisibleList`]) and pops it on return.
 //!
-//! **Made exact** (the picture equals the per-sample nearest polygon, ties included). An area
-//! is a rectangle of pixels; its samples are their centres. Coverage is the top-left rule as
-//! integer edge functions ([`PolygonTable::covers`]), each linear, with a row range; the
-//! covered samples are a convex set. So, from the area's four **corner samples**:
-//! all four covered ⇒ every sample covered (surrounding); one edge (or the row range)
-//! excluding all four ⇒ none covered (disjoint); a sample bounding box
-//! (`first_col..=last_col`, `first_row..=last_row`) outside the area ⇒ disjoint (min-max);
-//! inside it ⇒ contained; else intersecting — conservatively: it may still miss every
-//! sample, and subdivision settles that, since at one pixel the four corners are its centre
-//! and the classification is exact. Depth is linear too, so a plane's extremes over a
-//! rectangle are at its corners, and `S` beats `Q` ([`PolygonTable::beats`]: nearer, or as
-//! near and first in the scene) at every sample of a rectangle if it does at its four corners
-//! (the difference of two planes is linear; a tie at a corner is allowed only when `S` is
-//! first). Comparisons with `Q` are made on the corners of the area clipped to `Q`'s sample
-//! box, which holds every sample `Q` covers. The hidden test keeps ties right the same way:
-//! `P` goes when `(zmin_P, P) > (zmax_S, S)` in (depth, scene order), the list's sort order.
+//! **Made exact** (every pixel is the per-sample nearest polygon, ties included). An area is a
+//! rectangle of pixels; its samples are their centres. Coverage is the top-left rule as integer
+//! edge functions ([`PolygonTable::covers`]), each linear, plus a row range, so the covered
+//! samples are a convex set and the area's four **corner samples** decide: all four covered ⇒
+//! every sample covered (surrounding); one edge or the row range excluding all four ⇒ none
+//! (disjoint); the sample box (`first_col..=last_col` × `first_row..=last_row`) outside the
+//! area ⇒ disjoint (min-max), inside ⇒ contained; else intersecting — conservatively, as it may
+//! still miss every sample: at one pixel the four corners are its centre and the test is exact.
+//! Depth is linear too, so a plane's extremes over a rectangle are at its corners, and `S`
+//! beats `Q` ([`PolygonTable::beats`]: nearer, or as near and first in the scene) at every
+//! sample of a rectangle if it does at its corners (the difference of two planes is linear).
+//! `Q` is compared on the area clipped to its sample box, which holds all it covers. The hidden
+//! test keeps ties the same way: `P` goes when `(zmin_P, P) > (zmax_S, S)` in (depth, scene
+//! order), the list's sort order.
 //!
-//! Linearity needs care in Q16.16: a plane's depth wraps modulo 2^32 LSB outside its range
-//! ([`crate::number::Scalar::step`]), so far from a steep polygon the stored bits are not
-//! linear. Each frame every polygon is checked once: its depths at the corners of its sample
-//! box must lie on one line (checked exactly in `f64`; a wrap puts a corner 65536 off, far
-//! beyond the rounding tolerance of `f32`). Then its depth is exactly linear over the box,
-//! which holds every rectangle it is compared on. A polygon that fails never takes part in
-//! an area decision on depth; it is settled pixel by pixel. f32 never wraps, but its steps
-//! round: there area decisions equal the per-pixel test except at depths within rounding of
-//! a tie.
+//! In Q16.16 a plane's depth wraps modulo 2^32 LSB out of range ([`Scalar::step`]), so far from
+//! a steep polygon the stored bits are not linear. Each frame every polygon's depths at its
+//! sample box's corners are checked to lie on one line (exactly, in `f64`; a wrap is 65536
+//! off). Then its depth is exactly linear over the box, which holds every rectangle it is
+//! compared on; a polygon that fails never takes part in a decision on depth before the pixel
+//! level. f32 never wraps, but rounds: area decisions equal the per-pixel test except within
+//! rounding of a tie.
 //!
-//! **Capacity.** The stack holds a band list and at most `log2(B) + 1` area lists, each a
-//! subset of the band list, so a band reached by `n` polygons needs at most `n·(log2(B) + 2)`
-//! entries. The worst band is found before the first row is sent, and a scene that needs more
-//! than `L` is [`Error::Capacity`] with [`Table::VisibleList`]; nothing can fail later.
-//!
-//! RAM ([`Warnock::RAM_BYTES`]): the polygon table, `B` rows of colour and depth
-//! (`B·W·(2 + size_of::<N>())` bytes), `L` list entries of 8 bytes and a flag per polygon.
+//! **Capacity.** The stack holds a band list and at most `log2(B) + 1` area lists, each a subset
+//! of it: a band reached by `n` polygons needs at most `n·(log2(B) + 2)` entries. The worst band
+//! is found before the first row is sent; more than `L` is [`Error::Capacity`]
+//! ([`Table::VisibleList`]), and nothing can fail later. RAM ([`Warnock::RAM_BYTES`]): the
+//! polygon table, `B` rows of colour and depth (`B·W·(2 + size_of::<N>())` bytes), `L` list
+//! entries of 8 bytes and a flag per polygon.
 //!
 //! ```
 //! use zrow::warnock::Warnock;
@@ -87,21 +75,19 @@
 use crate::error::{Error, RenderError, Table};
 use crate::method::{FrameStats, Renderer};
 use crate::number::{DepthPlane, Scalar};
-use crate::polygons::{paint_span, PolygonTable};
+use crate::polygons::{paint_span, PolygonTable, Stored};
 use crate::raster::{Config, Side};
 use crate::scene::Scene;
 use crate::sink::{Row, RowSink};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use heapless::Vec;
 
-/// How a polygon stands to an area (disjoint polygons are never listed).
+/// How a polygon stands to an area: covers every sample, its sample box is inside, or
+/// anything else not known to miss it (disjoint polygons are never listed).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Relation {
-    /// Covers every sample of the area.
     Surrounding,
-    /// Anything else that is not known to miss the area.
     Intersecting,
-    /// Its sample box lies inside the area.
     Contained,
 }
 
@@ -164,13 +150,28 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, 
 }
 
 /// What one frame shares with every area.
-#[derive(Clone, Copy)]
 struct Frame {
     w: i32,
     h: i32,
     s: u32,
     band_y0: i32,
     background: Rgb565,
+    areas: u32,
+}
+
+/// Whether a polygon's rows meet rows `y0..y1`.
+fn reaches<N>(p: &Stored<N>, y0: i32, y1: i32) -> bool {
+    (p.first_row as i32) < y1 && p.last_row as i32 >= y0
+}
+
+/// A polygon's sample box: every sample it covers lies in it.
+fn sample_box<N>(p: &Stored<N>) -> Rect {
+    Rect {
+        x0: p.first_col as i32,
+        y0: p.first_row as i32,
+        x1: p.last_col as i32 + 1,
+        y1: p.last_row as i32 + 1,
+    }
 }
 
 impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, const L: usize>
@@ -204,14 +205,9 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, 
         let levels = B.trailing_zeros() + 2;
         let mut most = 0u32;
         for y0 in (0..h).step_by(B) {
-            let y1 = (y0 + B as i32).min(h) - 1;
-            let n = self
-                .table
-                .polygons()
-                .iter()
-                .filter(|p| p.first_row as i32 <= y1 && p.last_row as i32 >= y0)
-                .count() as u32;
-            most = most.max(n);
+            let y1 = (y0 + B as i32).min(h);
+            let polygons = self.table.polygons().iter();
+            most = most.max(polygons.filter(|p| reaches(p, y0, y1)).count() as u32);
         }
         most.saturating_mul(levels)
     }
@@ -236,32 +232,22 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, 
             .into());
         }
         for (lin, p) in self.linear.iter_mut().zip(self.table.polygons()) {
-            let bbox = Rect {
-                x0: p.first_col as i32,
-                y0: p.first_row as i32,
-                x1: p.last_col as i32 + 1,
-                y1: p.last_row as i32 + 1,
-            };
-            *lin = linear_over(&p.plane, &bbox);
+            *lin = linear_over(&p.plane, &sample_box(p));
         }
-        let mut stats = FrameStats {
-            polygons: self.table.len() as u32,
-            edges: self.table.edge_count() as u32,
-            ..FrameStats::default()
-        };
         let mut frame = Frame {
             w,
             h,
             s: cfg.subpixel_bits as u32,
             band_y0: 0,
             background: cfg.background,
+            areas: 0,
         };
         for band_y0 in (0..h).step_by(B) {
             let band_y1 = (band_y0 + B as i32).min(h);
             frame.band_y0 = band_y0;
             self.list.clear();
             for (i, p) in self.table.polygons().iter().enumerate() {
-                if p.first_row as i32 <= band_y1 - 1 && p.last_row as i32 >= band_y0 {
+                if reaches(p, band_y0, band_y1) {
                     // Cannot fail: `needed` counted these and checked L.
                     let _ = self.list.push(Entry {
                         poly: i as u16,
@@ -272,7 +258,7 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, 
             }
             let top = self.list.len();
             for x0 in (0..w).step_by(B) {
-                self.area(&frame, x0, band_y0, B as i32, 0, top, &mut stats);
+                self.area(&mut frame, x0, band_y0, B as i32, (0, top));
             }
             for y in band_y0..band_y1 {
                 let r = (y - band_y0) as usize;
@@ -287,22 +273,17 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, 
                 }
             }
         }
-        Ok(stats)
+        Ok(FrameStats {
+            polygons: self.table.len() as u32,
+            edges: self.table.edge_count() as u32,
+            areas: frame.areas,
+            ..FrameStats::default()
+        })
     }
 
     /// Decides the area `size`×`size` at (`x0`, `y0`) (clipped to the screen), whose parent's
-    /// list is `list[from..to]`. Recursion depth is at most `log2(B) + 1`.
-    #[allow(clippy::too_many_arguments)]
-    fn area(
-        &mut self,
-        f: &Frame,
-        x0: i32,
-        y0: i32,
-        size: i32,
-        from: usize,
-        to: usize,
-        stats: &mut FrameStats,
-    ) {
+    /// list is `list[parent.0..parent.1]`. Recursion depth is at most `log2(B) + 1`.
+    fn area(&mut self, f: &mut Frame, x0: i32, y0: i32, size: i32, parent: (usize, usize)) {
         let r = Rect {
             x0,
             y0,
@@ -312,10 +293,10 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, 
         if r.x0 >= r.x1 || r.y0 >= r.y1 {
             return;
         }
-        stats.areas = stats.areas.saturating_add(1);
+        f.areas = f.areas.saturating_add(1);
         let start = self.list.len();
         // Step 2: the PVPL — the parent's list without the disjoint polygons.
-        for k in from..to {
+        for k in parent.0..parent.1 {
             let Some(&e) = self.list.get(k) else { break };
             let i = e.poly as usize;
             let rel = match e.rel {
@@ -328,7 +309,7 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, 
             };
             let zmin = if self.is_linear(i) {
                 let p = self.table.get(i);
-                extreme(&p.plane, &clip_to_box(&r, i, &self.table), false)
+                extreme(&p.plane, &clip_to_box(&r, p), false)
             } else {
                 N::ZERO
             };
@@ -372,7 +353,7 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, 
                 } else {
                     let (end, half) = (self.list.len(), size / 2);
                     for (dx, dy) in [(0, 0), (half, 0), (0, half), (half, half)] {
-                        self.area(f, x0 + dx, y0 + dy, half, start, end, stats);
+                        self.area(f, x0 + dx, y0 + dy, half, (start, end));
                     }
                 }
             }
@@ -454,7 +435,7 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, 
                 list.iter().all(|q| {
                     let q = q.poly as usize;
                     q == s
-                        || clip_to_box(r, q, &self.table)
+                        || clip_to_box(r, self.table.get(q))
                             .corners()
                             .iter()
                             .all(|&(x, y)| self.table.beats(s, q, x, y))
@@ -551,32 +532,28 @@ fn classify<N: Scalar, const P: usize, const E: usize>(
     })
 }
 
-/// The area clipped to polygon `i`'s sample box (which holds every sample it covers).
-fn clip_to_box<N: Scalar, const P: usize, const E: usize>(
-    r: &Rect,
-    i: usize,
-    t: &PolygonTable<N, P, E>,
-) -> Rect {
-    let p = t.get(i);
+/// The area clipped to a polygon's sample box (which holds every sample it covers).
+fn clip_to_box<N>(r: &Rect, p: &Stored<N>) -> Rect {
+    let b = sample_box(p);
     Rect {
-        x0: r.x0.max(p.first_col as i32),
-        y0: r.y0.max(p.first_row as i32),
-        x1: r.x1.min(p.last_col as i32 + 1),
-        y1: r.y1.min(p.last_row as i32 + 1),
+        x0: r.x0.max(b.x0),
+        y0: r.y0.max(b.y0),
+        x1: r.x1.min(b.x1),
+        y1: r.y1.min(b.y1),
     }
 }
 
 /// The least (or, with `max`, the greatest) plane depth at the rectangle's corner samples.
 fn extreme<N: Scalar>(plane: &DepthPlane<N>, r: &Rect, max: bool) -> N {
-    let [a, rest @ ..] = r.corners();
-    let mut m = plane.at(a.0, a.1);
-    for (x, y) in rest {
+    let [(x, y), rest @ ..] = r.corners();
+    rest.iter().fold(plane.at(x, y), |m, &(x, y)| {
         let z = plane.at(x, y);
         if (max && z > m) || (!max && z < m) {
-            m = z;
+            z
+        } else {
+            m
         }
-    }
-    m
+    })
 }
 
 /// Whether the plane's stored depths are linear over the rectangle: its corners lie on the

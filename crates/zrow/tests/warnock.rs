@@ -392,10 +392,7 @@ fn ties_with_a_wrapping_sliver_follow_scene_order() {
     }
 }
 
-fn scene_of<N: Scalar>(verts: &[Vec3<N>], faces: &[Face]) -> ScreenScene<'static, N>
-where
-    N: 'static,
-{
+fn scene_of<N: Scalar>(verts: &[Vec3<N>], faces: &[Face]) -> ScreenScene<'static, N> {
     let v: &'static [Vec3<N>] = Box::leak(verts.to_vec().into_boxed_slice());
     let f: Vec<Face<'static>> = faces
         .iter()
