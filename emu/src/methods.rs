@@ -20,6 +20,7 @@ macro_rules! for_each_method {
         $run!(zrow::ZBuffer<Q16_16, 240, 240>);
         $run!(zrow::Scanline<Q16_16, 240, FP, FE, FA>);
         $run!(zrow::bsp::Bsp<Q16_16, 240, FP, FE, 20_480, 8_192>);
+        $run!(zrow::abuffer::ABuffer<Q16_16, 240, FP, FE, 16>);
         // TODO(lead): enable after merge
         // $run!(zrow::tiled::Tiled<Q16_16, 240, 16, FP, FE>);
         // TODO(lead): enable after merge

@@ -8,6 +8,7 @@
 use crate::surfaces::Surfaces;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use std::time::{Duration, Instant};
+use zrow::abuffer::ABuffer;
 use zrow::bsp::Bsp;
 use zrow::depthsort::DepthSort;
 // TODO(lead): enable after merge
@@ -36,6 +37,7 @@ pub fn methods() -> Vec<Method> {
         method::<ZBuffer<Q16_16, SIZE, SIZE>>(Some(ram::zbuffer)),
         method::<Scanline<Q16_16, SIZE, P, E, A>>(Some(ram::scanline)),
         method::<Bsp<Q16_16, SIZE, P, E, Q, D>>(Some(ram::bsp)),
+        method::<ABuffer<Q16_16, SIZE, P, E, 16>>(Some(ram::abuffer)),
         // TODO(lead): enable after merge
         // method::<Tiled<Q16_16, SIZE, 16, P, E>>(None),
         // TODO(lead): enable after merge
@@ -59,7 +61,7 @@ pub struct Need {
 /// RAM formulas: bytes each method needs with every capacity sized to the scene.
 pub mod ram {
     use super::{Need, D};
-    use zrow::{bsp::Bsp, depthsort::DepthSort, Q16_16};
+    use zrow::{abuffer::ABuffer, bsp::Bsp, depthsort::DepthSort, Q16_16};
 
     /// `zrow::scanline::ram_bytes` (its tables at the sizes required, plus two rows).
     pub fn scanline(n: &Need) -> usize {
@@ -98,6 +100,19 @@ pub mod ram {
         ];
         let depth = (T::<1, 1, 1, 1, 65>::RAM_BYTES - base) * (D - 1) / 64;
         linear(base, slope, n, depth)
+    }
+    /// `ABuffer::<Q16_16, W, P, E, F>::RAM_BYTES` as [`depthsort`], with room for one
+    /// translucent fragment (the scenes are opaque: none is made).
+    pub fn abuffer(n: &Need) -> usize {
+        type T<const W: usize, const P: usize, const E: usize> = ABuffer<Q16_16, W, P, E, 1>;
+        let base = T::<1, 1, 1>::RAM_BYTES;
+        let slope = [
+            T::<65, 1, 1>::RAM_BYTES - base,
+            T::<1, 65, 1>::RAM_BYTES - base,
+            T::<1, 1, 65>::RAM_BYTES - base,
+            0,
+        ];
+        linear(base, slope, n, 0)
     }
     fn linear(base: usize, slope: [usize; 4], n: &Need, extra: usize) -> usize {
         let (p, e) = (n.req.polygons as usize, n.req.edges as usize);

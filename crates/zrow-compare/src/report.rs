@@ -475,8 +475,8 @@ impl Report {
                  polygon count, more than an STM32F411's 128 KB; the scan-line's tables at \
                  exactly what `foley2500` requires take {} bytes (its `ram=`: \
                  `zrow::scanline::ram_bytes`), so 2,500 on-screen polygons do not fit an F411 \
-                 either, while 100 take {} bytes. (Depth sort's and BSP's `ram=` are their \
-                 renderers as built, sized for `foley2500` with room to spare.)",
+                 either, while 100 take {} bytes. (The other methods' `ram=` are their renderers \
+                 as built, sized for `foley2500` with room to spare.)",
                 thousands(s.ram),
                 counts
                     .get("scanline", a)
@@ -573,9 +573,10 @@ impl Report {
              - *RAM*: bytes the method needs at capacities sized for the scene — `zrow::requirements` \
              for polygons, edges and active polygons, `FrameStats::splits` for the pieces of \
              depth sort and BSP (polygons + splits). Scan-line: `zrow::scanline::ram_bytes`. \
-             Z-buffer: `W·H·(4 + 2)`. Depth sort and BSP: their `RAM_BYTES` at those capacities \
-             (linear in each const parameter, computed from the struct's size at small ones; \
-             BSP's tree-depth bound is left as built, 65,534, whose two stacks take 640 KiB). \
+             Z-buffer: `W·H·(4 + 2)`. Depth sort, BSP and the A-buffer: their `RAM_BYTES` at those \
+             capacities (linear in each const parameter, computed from the struct's size at \
+             small ones; BSP's tree-depth bound is left as built, 65,534, whose two stacks take \
+             640 KiB; the A-buffer with room for one translucent fragment). \
              The renderers timed here are built once at capacities for the largest scene.\n\
              - *ms*: one frame, median of the runs; rows sent to an in-memory frame.\n"
         )
@@ -729,6 +730,21 @@ impl Report {
                         failed.join("; ")
                     )
                 }
+            )
+            .unwrap();
+        }
+        // A-buffer.
+        if self.cell("abuffer", 0).is_some() {
+            writeln!(
+                d,
+                "**A-buffer** (not in the seed's table; its translucency is unused here, every \
+                 face is opaque, so it is a z-buffer one row at a time: each row clears a \
+                 one-row depth buffer and paints every polygon crossing it). Grows {}× from {} \
+                 to {} polygons: like the z-buffer's, its pixel work stays the same, and its \
+                 per-polygon work is the polygon table's setup plus one span per row crossed.\n",
+                g("abuffer"),
+                np(0),
+                np(last)
             )
             .unwrap();
         }
