@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # CI's check of the emulated bench: every frame the Cortex-M renders under QEMU must hash the
-# same as the host's render of the same scene and format (same core, different instruction set).
+# same as the host's render of the same scene, format and method (same core, different
+# instruction set).
 #
 # usage: emu/check.sh [m4|m3]      (default m4)
 #
 # Runs emu/run.sh (which prints the bench lines and the table), computes the host's lines with
-# emu/host_hash, and compares scene, format, face count and frame hash line by line (ram= is the
+# emu/host_hash, and compares method, scene, format, face count and frame hash line by line (ram= is the
 # guest's alone: table entries may be laid out differently on a 64-bit host). Exits non-zero on
 # any difference, on a missing frame, or if either side fails.
 set -euo pipefail
@@ -21,9 +22,9 @@ emu="$here/target/emu-hashes-$cpu.txt"
 # cd so host_hash/.cargo/config.toml (build.target = host-tuple) overrides the bench's thumb
 # default; its own target dir, as in run.sh.
 (cd "$host_dir" && cargo run --release --quiet --target-dir "$host_dir/target") >"$host"
-awk '/^scene=/ {
+awk '/^method=/ {
   for (i = 1; i <= NF; i++) { split($i, f, "="); v[f[1]] = f[2] }
-  printf "scene=%s format=%s tris=%s hash=%s\n", v["scene"], v["format"], v["tris"], v["hash"]
+  printf "method=%s scene=%s format=%s tris=%s hash=%s\n", v["method"], v["scene"], v["format"], v["tris"], v["hash"]
 }' "$here/target/bench-$cpu.txt" >"$emu"
 
 echo
@@ -33,7 +34,7 @@ if [ "$frames" -eq 0 ]; then
   exit 1
 fi
 if diff -u --label "host" --label "emulated $cpu" "$host" "$emu"; then
-  echo "emulated $cpu frames equal the host's: $frames frames (scene, format, tris, hash)"
+  echo "emulated $cpu frames equal the host's: $frames frames (method, scene, format, tris, hash)"
   echo "emu-check: $frames passed, 0 failed"
 else
   failed="$(diff "$host" "$emu" | grep -c '^>' || true)"

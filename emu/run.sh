@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# zrow's emulated bench: renders every standard scene in Q16.16 and f32 on a QEMU Cortex-M and
-# prints one line per frame,
-#   scene=NAME format=FMT tris=N instructions=N ram=BYTES hash=HEX
+# zrow's emulated bench: renders every standard scene in Q16.16 and f32 with the scan-line
+# method, and the comparison scenes (foley100, foley2500) in Q16.16 with every compared method
+# (emu/src/methods.rs), on a QEMU Cortex-M and prints one line per frame,
+#   method=NAME scene=NAME format=FMT tris=N instructions=N ram=BYTES hash=HEX
 # then a table with an estimated frame time at 100 MHz beside the SPI frame time at 50 MHz.
 #
 # usage: emu/run.sh [m4|m3]      (default m4)
@@ -93,27 +94,27 @@ if ! awk -v counts="$counts" '
   cat "$raw" "$log" >&2
   exit 1
 fi
-if grep -q '^error' "$result" || ! grep -q '^scene=' "$result"; then
+if grep -q '^error' "$result" || ! grep -q '^method=' "$result"; then
   echo "run.sh: the bench reported an error or no frame" >&2
   cat "$result" >&2
   exit 1
 fi
 
 # --- report -----------------------------------------------------------------------------------
-grep '^scene=' "$result"
+grep '^method=' "$result"
 echo
 echo "$label; $qemu_version"
 awk '
   /^# calibration/ { split($NF, f, "="); cal = f[2] }
   /^# hash sink alone/ { split($NF, f, "="); sink = f[2] }
-  /^scene=/ {
+  /^method=/ {
     for (i = 1; i <= NF; i++) { split($i, f, "="); v[f[1]] = f[2] }
     if (!header) {
-      printf "%-10s %-7s %5s %12s %17s %14s %15s %7s\n", "scene", "format", "tris", "instructions", "est. ms @100 MHz*", "w/o hash ms**", "SPI ms @50 MHz", "ram B"
+      printf "%-10s %-10s %-7s %5s %12s %17s %14s %15s %7s\n", "method", "scene", "format", "tris", "instructions", "est. ms @100 MHz*", "w/o hash ms**", "SPI ms @50 MHz", "ram B"
       header = 1
     }
     # 240x240 RGB565 = 921,600 bits; at 50 MHz: 18.432 ms.
-    printf "%-10s %-7s %5d %12d %17.1f %14.1f %15.1f %7d\n", v["scene"], v["format"], v["tris"], v["instructions"], v["instructions"] / 1e5, (v["instructions"] - sink) / 1e5, 240 * 240 * 16 / 50e6 * 1e3, v["ram"]
+    printf "%-10s %-10s %-7s %5d %12d %17.1f %14.1f %15.1f %7d\n", v["method"], v["scene"], v["format"], v["tris"], v["instructions"], v["instructions"] / 1e5, (v["instructions"] - sink) / 1e5, 240 * 240 * 16 / 50e6 * 1e3, v["ram"]
   }
   END {
     print "*  estimate: instructions / 100e6 s. Instructions are not cycles (wait states, multi-cycle"

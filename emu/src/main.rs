@@ -1,18 +1,25 @@
-//! zrow's emulated bench: renders each standard scene once per number format on a QEMU
-//! Cortex-M (mps2-an386 = Cortex-M4F, mps2-an385 = Cortex-M3) and prints, per frame,
+//! zrow's emulated bench: renders each standard scene once per number format with the
+//! scan-line method, then the comparison scenes (Foley & van Dam's Table 15.3 at 100 and 2,500
+//! polygons) once with every compared method, on a QEMU Cortex-M (mps2-an386 = Cortex-M4F,
+//! mps2-an385 = Cortex-M3) and prints, per frame,
 //!
 //! ```text
-//! scene=NAME format=FMT tris=N instructions=? ram=BYTES hash=HEX
+//! method=NAME scene=NAME format=FMT tris=N instructions=? ram=BYTES hash=HEX
 //! ```
 //!
+//! - `method`: the renderer's `Renderer::NAME`. The standard scenes (`cube`, `mesh1k`,
+//!   `random400`, both formats) are drawn by `scanline` as before; the comparison scenes
+//!   (zrow-scenes' `FOLEY`: `foley100`, `foley2500`, Q16.16) by every method in
+//!   `src/methods.rs`, one line each there;
 //! - `tris`: the scene's face count (zrow-scenes);
 //! - `instructions`: printed as `?` by the guest, which cannot count itself. The frame is
 //!   bracketed by calls to [`zrow_bench_start`] and [`zrow_bench_stop`]; the qemu-icount
 //!   plugin (tools/qemu-icount) counts the guest instructions executed between them, one count
 //!   per pair, in order, and `emu/run.sh` puts the k-th count into the k-th `instructions=?`;
-//! - `ram`: `zrow::scanline::ram_bytes::<N>(&req)` with `req = zrow::requirements(..)`
-//!   measured here on the guest: the renderer's tables at exactly the sizes this frame needs,
-//!   plus its two rows;
+//! - `ram`: for `scanline`, `zrow::scanline::ram_bytes::<N>(&req)` with
+//!   `req = zrow::requirements(..)` measured here on the guest: the renderer's tables at
+//!   exactly the sizes this frame needs, plus its two rows. For the other methods, the
+//!   renderer's `RAM_BYTES` as built (capacities in `src/methods.rs`, sized for `foley2500`);
 //! - `hash`: FNV-1a 64 over every row's Rgb565 pixels as little-endian `u16`, top to bottom
 //!   ([`zrow_scenes::FrameHash`], the same function the host check uses), 16 hex digits.
 //!
@@ -30,12 +37,14 @@ use core::sync::atomic::{compiler_fence, AtomicU32, Ordering};
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-use zrow::{Scanline, Q16_16};
-use zrow_scenes::{Format, FrameHash, NAMES};
+use zrow::{Renderer, Scanline, Q16_16};
+use zrow_scenes::{Format, FrameHash, FOLEY, NAMES};
 
-/// The renderer every frame uses: 240-pixel rows, 1024 polygons, 3072 edges, 512 active
-/// polygons — generous for the standard scenes (the `ram=` field is what a frame really needs).
-type Renderer<N> = Scanline<N, 240, 1024, 3072, 512>;
+include!("methods.rs");
+
+/// The renderer the standard scenes use: 240-pixel rows, 1024 polygons, 3072 edges, 512
+/// active polygons — generous for them (the `ram=` field is what a frame really needs).
+type Standard<N> = Scanline<N, 240, 1024, 3072, 512>;
 
 /// How often the start marker ran (printed at the end: the optimiser cannot drop the counts,
 /// and the two markers' bodies differ, so LLVM cannot merge them into one address).
@@ -92,8 +101,17 @@ struct Line {
     hash: u64,
 }
 
+/// The `ram=` figure: the scan-line's formula at the frame's requirements, else `RAM_BYTES`.
+fn ram<N: Format, R: Renderer<N>>(req: &zrow::Requirements) -> usize {
+    if R::NAME == "scanline" {
+        zrow::scanline::ram_bytes::<N>(req)
+    } else {
+        R::RAM_BYTES
+    }
+}
+
 /// Renders scene `name` in format `N` once, between the markers, and reports it.
-fn bench<N: Format>(renderer: &mut Renderer<N>, name: &str) -> Result<Line, &'static str> {
+fn bench<N: Format, R: Renderer<N>>(renderer: &mut R, name: &str) -> Result<Line, &'static str> {
     zrow_scenes::with_scene::<N, _>(name, 0.0, |scene, cfg, tris| {
         let mut rows = [0u32; 241];
         let req = zrow::requirements(scene, cfg, &mut rows).map_err(|_| "requirements failed")?;
@@ -106,19 +124,20 @@ fn bench<N: Format>(renderer: &mut Renderer<N>, name: &str) -> Result<Line, &'st
         result.map_err(|_| "render failed (capacity or scene error)")?;
         Ok(Line {
             tris,
-            ram: zrow::scanline::ram_bytes::<N>(&req),
+            ram: ram::<N, R>(&req),
             hash: sink.0,
         })
     })
     .unwrap_or(Err("unknown scene"))
 }
 
-/// Benchmarks every standard scene in format `N`; false after an error line.
-fn bench_format<N: Format>(renderer: &mut Renderer<N>, name: &str) -> bool {
+/// Benchmarks scene `name` in format `N` with `renderer`; false after an error line.
+fn bench_format<N: Format, R: Renderer<N>>(renderer: &mut R, name: &str) -> bool {
     match bench(renderer, name) {
         Ok(l) => {
             hprintln!(
-                "scene={name} format={} tris={} instructions=? ram={} hash={:016x}",
+                "method={} scene={name} format={} tris={} instructions=? ram={} hash={:016x}",
+                R::NAME,
                 N::NAME,
                 l.tris,
                 l.ram,
@@ -127,24 +146,43 @@ fn bench_format<N: Format>(renderer: &mut Renderer<N>, name: &str) -> bool {
             true
         }
         Err(e) => {
-            hprintln!("error scene={name} format={}: {e}", N::NAME);
+            hprintln!(
+                "error method={} scene={name} format={}: {e}",
+                R::NAME,
+                N::NAME
+            );
             false
         }
     }
 }
 
+/// Renders every comparison scene with renderer type `$t`, built once in a static of its own
+/// (`ok` becomes false after an error line).
+macro_rules! compare {
+    ($ok:ident, $t:ty) => {{
+        match cortex_m::singleton!(: $t = <$t>::new()) {
+            Some(r) => {
+                for name in FOLEY {
+                    $ok &= bench_format::<Q16_16, _>(r, name);
+                }
+            }
+            None => unreachable!("each singleton is taken once"),
+        }
+    }};
+}
+
 #[entry]
 fn main() -> ! {
-    let q16 = cortex_m::singleton!(: Renderer<Q16_16> = Renderer::new());
-    let f32s = cortex_m::singleton!(: Renderer<f32> = Renderer::new());
+    let q16 = cortex_m::singleton!(: Standard<Q16_16> = Standard::new());
+    let f32s = cortex_m::singleton!(: Standard<f32> = Standard::new());
     let (Some(q16), Some(f32s)) = (q16, f32s) else {
         unreachable!("main runs once")
     };
     hprintln!(
         "# zrow emulated bench, target {}, renderer {} B (Q16.16) / {} B (f32) as built",
         env!("BENCH_TARGET"),
-        Renderer::<Q16_16>::RAM_BYTES,
-        Renderer::<f32>::RAM_BYTES
+        Standard::<Q16_16>::RAM_BYTES,
+        Standard::<f32>::RAM_BYTES
     );
     zrow_bench_start();
     zrow_bench_stop();
@@ -156,6 +194,12 @@ fn main() -> ! {
         ok &= bench_format(q16, name);
         ok &= bench_format(f32s, name);
     }
+    macro_rules! run {
+        ($t:ty) => {
+            compare!(ok, $t)
+        };
+    }
+    for_each_method!(run);
     hprintln!(
         "# pairs: starts={} stops={}",
         STARTS.load(Ordering::Relaxed),

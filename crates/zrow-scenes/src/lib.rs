@@ -11,6 +11,13 @@
 //! | `mesh1k` | model: a closed torus, 25 × 20 quads as triangles | 1,000 |
 //! | `random400` | screen space: 400 random triangles, depth 0..100, intersecting | 400 |
 //!
+//! Comparison scenes ([`FOLEY`], for Foley & van Dam's Table 15.3 on the emulated Cortex-M4:
+//! `crates/zrow-compare`, `emu/`): `foley100` and `foley2500`, screen space — two tilted tori
+//! and two wavy sheets cutting through them and each other, tessellated into 100 and 2,500
+//! triangles by zrow-compare's generator (`crates/zrow-compare/src/surfaces.rs`, included by
+//! `build.rs`), at 240 × 240. Positions are on a 1/256-pixel grid (depth 1/1024), so their f32
+//! and Q16.16 versions are the same numbers.
+//!
 //! Demo scenes ([`DEMOS`], for the simulator window and the board): `interlocked` — two
 //! 256-triangle rings linked through each other and a cube piercing both, turning, so hidden
 //! surfaces change every frame — then `cube` and `mesh1k`.
@@ -49,6 +56,9 @@ mod meshes {
 /// The scenes' names, in report order.
 pub const NAMES: [&str; 3] = ["cube", "mesh1k", "random400"];
 
+/// The comparison scenes (Foley & van Dam's Table 15.3 at 100 and 2,500 polygons), screen space.
+pub const FOLEY: [&str; 2] = ["foley100", "foley2500"];
+
 /// The demo scenes, in the order the simulator and the board show them.
 pub const DEMOS: [&str; 3] = ["interlocked", "cube", "mesh1k"];
 
@@ -65,6 +75,10 @@ pub trait Format: Scalar {
     fn random400() -> &'static [Vec3<Self>];
     /// The demo's ring (a 16 × 8 torus) positions.
     fn ring() -> &'static [Vec3<Self>];
+    /// The 100-triangle comparison scene's positions (screen space).
+    fn foley100() -> &'static [Vec3<Self>];
+    /// The 2,500-triangle comparison scene's positions (screen space).
+    fn foley2500() -> &'static [Vec3<Self>];
 }
 
 impl Format for f32 {
@@ -79,6 +93,12 @@ impl Format for f32 {
     }
     fn ring() -> &'static [Vec3<f32>] {
         &meshes::RING_F32
+    }
+    fn foley100() -> &'static [Vec3<f32>] {
+        &meshes::FOLEY100_F32
+    }
+    fn foley2500() -> &'static [Vec3<f32>] {
+        &meshes::FOLEY2500_F32
     }
 }
 
@@ -95,6 +115,12 @@ impl Format for Q16_16 {
     fn ring() -> &'static [Vec3<Q16_16>] {
         &meshes::RING_Q16_16
     }
+    fn foley100() -> &'static [Vec3<Q16_16>] {
+        &meshes::FOLEY100_Q16_16
+    }
+    fn foley2500() -> &'static [Vec3<Q16_16>] {
+        &meshes::FOLEY2500_Q16_16
+    }
 }
 
 /// The mesh of a standard scene, borrowed from flash.
@@ -103,6 +129,8 @@ pub fn mesh<N: Format>(name: &str) -> Option<Mesh<'static, N>> {
         "cube" => (N::cube(), &meshes::CUBE_FACES),
         "mesh1k" => (N::torus(), &meshes::TORUS_FACES),
         "random400" => (N::random400(), &meshes::RANDOM400_FACES),
+        "foley100" => (N::foley100(), &meshes::FOLEY100_FACES),
+        "foley2500" => (N::foley2500(), &meshes::FOLEY2500_FACES),
         _ => return None,
     };
     Some(Mesh { vertices, faces })
@@ -124,7 +152,7 @@ pub fn light<N: Scalar>() -> Option<Light<N>> {
 
 /// Calls `f` with the named scene, its configuration (240×240) and its face count; `None` for
 /// an unknown name. `angle` (radians) turns model scenes about the vertical axis. Names: the
-/// standard scenes ([`NAMES`]) and the demos ([`DEMOS`]).
+/// standard scenes ([`NAMES`]), the demos ([`DEMOS`]) and the comparison scenes ([`FOLEY`]).
 pub fn with_scene<N: Format, R>(
     name: &str,
     angle: f32,
@@ -135,7 +163,7 @@ pub fn with_scene<N: Format, R>(
     }
     let mesh = mesh::<N>(name)?;
     let faces = mesh.faces.len();
-    if name == "random400" {
+    if name == "random400" || FOLEY.contains(&name) {
         return Some(f(&ScreenScene { mesh }, &Config::screen(SIZE, SIZE), faces));
     }
     let objects = [Object {

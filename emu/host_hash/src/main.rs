@@ -1,11 +1,12 @@
 //! The emulated bench's frames rendered on the host: for each standard scene and number
-//! format, prints
+//! format (scan-line), then for each comparison scene and compared method (Q16.16), prints
 //!
 //! ```text
-//! scene=NAME format=FMT tris=N hash=HEX
+//! method=NAME scene=NAME format=FMT tris=N hash=HEX
 //! ```
 //!
-//! with the same renderer capacities, the same scenes (zrow-scenes, angle 0) and the same frame
+//! with the same renderers (the standard one below, the compared ones from the bench's
+//! `src/methods.rs`, included), the same scenes (zrow-scenes, angle 0) and the same frame
 //! hash ([`zrow_scenes::FrameHash`]: FNV-1a 64 over every row's Rgb565 pixels as
 //! little-endian `u16`, top to bottom) as emu/src/main.rs. `emu/check.sh` compares these lines
 //! with the bench's: same core, different instruction set, same pixels.
@@ -14,16 +15,19 @@
 //! host, so RAM is the guest's figure alone.
 
 use std::process::ExitCode;
-use zrow::{Scanline, Q16_16};
-use zrow_scenes::{Format, FrameHash, NAMES};
+use zrow::{Renderer, Scanline, Q16_16};
+use zrow_scenes::{Format, FrameHash, FOLEY, NAMES};
 
-/// The bench's renderer (emu/src/main.rs): 240-pixel rows, 1024 polygons, 3072 edges, 512
-/// active polygons.
-type Renderer<N> = Scanline<N, 240, 1024, 3072, 512>;
+include!("../../src/methods.rs");
 
-/// Renders `name` in format `N` and prints its line; false on error.
-fn line<N: Format>(name: &str) -> bool {
-    let mut renderer = Box::new(Renderer::<N>::new());
+/// The bench's standard renderer (emu/src/main.rs): 240-pixel rows, 1024 polygons, 3072
+/// edges, 512 active polygons.
+type Standard<N> = Scanline<N, 240, 1024, 3072, 512>;
+
+/// Renders `name` in format `N` with a new `R` and prints its line; false on error. Runs on
+/// the caller's thread: main gives it a stack big enough for the renderers' inline tables.
+fn line<N: Format, R: Renderer<N> + Default>(name: &str) -> bool {
+    let mut renderer = Box::new(R::default());
     let mut sink = FrameHash::default();
     let result = zrow_scenes::with_scene::<N, _>(name, 0.0, |scene, cfg, tris| {
         renderer.render(scene, cfg, &mut sink).map(|_| tris)
@@ -31,14 +35,19 @@ fn line<N: Format>(name: &str) -> bool {
     match result {
         Some(Ok(tris)) => {
             println!(
-                "scene={name} format={} tris={tris} hash={:016x}",
+                "method={} scene={name} format={} tris={tris} hash={:016x}",
+                R::NAME,
                 N::NAME,
                 sink.0
             );
             true
         }
         Some(Err(e)) => {
-            eprintln!("error scene={name} format={}: {e:?}", N::NAME);
+            eprintln!(
+                "error method={} scene={name} format={}: {e:?}",
+                R::NAME,
+                N::NAME
+            );
             false
         }
         None => {
@@ -48,12 +57,29 @@ fn line<N: Format>(name: &str) -> bool {
     }
 }
 
-fn main() -> ExitCode {
+fn all() -> bool {
     let mut ok = true;
     for name in NAMES {
-        ok &= line::<Q16_16>(name);
-        ok &= line::<f32>(name);
+        ok &= line::<Q16_16, Standard<Q16_16>>(name);
+        ok &= line::<f32, Standard<f32>>(name);
     }
+    macro_rules! run {
+        ($t:ty) => {
+            for name in FOLEY {
+                ok &= line::<Q16_16, $t>(name);
+            }
+        };
+    }
+    for_each_method!(run);
+    ok
+}
+
+fn main() -> ExitCode {
+    // `Box::new(R::default())` may build the renderer on the stack first (up to a megabyte).
+    let ok = std::thread::Builder::new()
+        .stack_size(64 << 20)
+        .spawn(all)
+        .is_ok_and(|t| t.join().unwrap_or(false));
     if ok {
         ExitCode::SUCCESS
     } else {

@@ -1,0 +1,29 @@
+// The comparison runs' methods: ONE line per method. Shared by the bench (emu/src/main.rs) and
+// the host check (emu/host_hash, which includes this file), so both render with the same
+// renderers. Scenes: zrow-scenes' `foley100` and `foley2500` (Foley & van Dam's Table 15.3 at
+// 100 and 2,500 polygons, 240 × 240, screen space), Q16.16 only.
+//
+// Capacities fit `foley2500` (measured: 2,498 polygons on screen, 6,356 edges, 230 active in
+// one row; depth-sort makes 958 pieces by splitting, BSP 14,310) with room to spare.
+
+/// Polygon capacity.
+const FP: usize = 2_500;
+/// Edge capacity.
+const FE: usize = 7_500;
+/// Active-list capacity (scan-line).
+const FA: usize = 320;
+
+/// Calls `$run!(TYPE)` for every compared method, in report order.
+macro_rules! for_each_method {
+    ($run:ident) => {
+        $run!(zrow::depthsort::DepthSort<Q16_16, 240, FP, FE, 4_096>);
+        $run!(zrow::ZBuffer<Q16_16, 240, 240>);
+        $run!(zrow::Scanline<Q16_16, 240, FP, FE, FA>);
+        $run!(zrow::bsp::Bsp<Q16_16, 240, FP, FE, 20_480, 8_192>);
+        $run!(zrow::abuffer::ABuffer<Q16_16, 240, FP, FE, 16>);
+        // TODO(lead): enable after merge
+        // $run!(zrow::tiled::Tiled<Q16_16, 240, 16, FP, FE>);
+        // TODO(lead): enable after merge
+        // $run!(zrow::warnock::Warnock<Q16_16, 240, 256, FP, FE, 65_536>);
+    };
+}
