@@ -42,6 +42,16 @@ impl<N: Scalar> DepthPlane<N> {
             .step(self.dzdx, i.wrapping_sub(self.i_ref))
             .step(self.dzdy, j.wrapping_sub(self.j_ref))
     }
+
+    /// Depth at the centre of pixel (`i`, `j`) without wrapping ([`Scalar::Unwrapped`]),
+    /// extrapolated from pixel `anchor`, where [`Self::at`] must be in range (a sample the
+    /// polygon covers): the plane's own value however far from the polygon, so the difference
+    /// of two planes is linear everywhere on the screen. Where [`Self::at`] is in range, both
+    /// agree.
+    #[inline]
+    pub fn at_unwrapped(&self, anchor: (i32, i32), i: i32, j: i32) -> N::Unwrapped {
+        N::unwrapped(self, anchor, i, j)
+    }
 }
 
 /// A number format the renderer can compute in.
@@ -95,6 +105,16 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     /// on the way, a depth that is in range at a sample inside the polygon comes out exact,
     /// and stepping one pixel at a time gives the same bits as stepping `n` at once.
     fn step(self, step: Self, n: i32) -> Self;
+
+    /// A plane's depth as [`DepthPlane::at_unwrapped`] gives it, for comparisons only.
+    type Unwrapped: PartialOrd + Copy;
+    /// The plane's depth at pixel (`i`, `j`) without wrapping, extrapolated from `anchor`.
+    /// Q16.16: the raw value in 64 bits, `at(anchor) + dzdx·(i − ai) + dzdy·(j − aj)`, exact
+    /// for any two pixels of a screen (offsets below 2^16, steps below 2^31); `plane.z_ref`
+    /// itself may have wrapped, its reference pixel lying off the polygon. f32:
+    /// [`DepthPlane::at`] (it never wraps).
+    fn unwrapped(plane: &DepthPlane<Self>, anchor: (i32, i32), i: i32, j: i32)
+        -> Self::Unwrapped;
 
     /// `a0 + (a1 − a0) · (bound − c0) / (c1 − c0)`: the value of an attribute `a` where a
     /// coordinate `c` going from `c0` to `c1` crosses `bound` (a clip plane). Computed wide
@@ -208,6 +228,17 @@ impl Scalar for Q16_16 {
     #[inline]
     fn step(self, step: Self, n: i32) -> Self {
         self.wrapping_add(step.wrapping_mul_int(n))
+    }
+    type Unwrapped = i64;
+    #[inline]
+    fn unwrapped(p: &DepthPlane<Self>, (ai, aj): (i32, i32), i: i32, j: i32) -> i64 {
+        // 32 × 32 → 64-bit products (one SMULL/SMLAL each on a Cortex-M4); the offsets fit
+        // 32 bits for any two pixels of a screen.
+        let (di, dj) = (i.wrapping_sub(ai) as i64, j.wrapping_sub(aj) as i64);
+        let raw = |v: Self| v.to_bits() as i64;
+        raw(p.at(ai, aj))
+            .wrapping_add(raw(p.dzdx).wrapping_mul(di))
+            .wrapping_add(raw(p.dzdy).wrapping_mul(dj))
     }
     fn lerp_clip(a0: Self, a1: Self, c0: Self, c1: Self, bound: Self) -> Self {
         let r = |v: Self| v.to_bits() as i128;
@@ -333,6 +364,11 @@ impl Scalar for f32 {
     #[inline]
     fn step(self, step: Self, n: i32) -> Self {
         self + step * n as f32
+    }
+    type Unwrapped = f32;
+    #[inline]
+    fn unwrapped(p: &DepthPlane<Self>, _anchor: (i32, i32), i: i32, j: i32) -> f32 {
+        p.at(i, j)
     }
     fn lerp_clip(a0: Self, a1: Self, c0: Self, c1: Self, bound: Self) -> Self {
         let den = c1 - c0;

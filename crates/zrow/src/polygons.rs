@@ -44,6 +44,10 @@ pub struct Stored<N> {
     pub first_col: i16,
     /// Last such column (inclusive; conservative).
     pub last_col: i16,
+    /// A pixel whose sample it covers (the first on screen, top to bottom, left to right;
+    /// `(first_col, first_row)` if none): where its plane's depth is in range, the anchor of
+    /// [`DepthPlane::at_unwrapped`](crate::number::DepthPlane::at_unwrapped).
+    pub anchor: (i16, i16),
     edge_start: u32,
     edge_count: u8,
 }
@@ -104,6 +108,20 @@ impl<N: Scalar, const P: usize, const E: usize> PolygonTable<N, P, E> {
                 xmax = xmax.max(e.x0).max(e.x0 + e.dx);
             }
             let col = |x: i32| -((-(x as i64 - h as i64)).div_euclid(1 << s));
+            let (first_col, last_col) = (
+                col(xmin).clamp(0, cfg.width as i64 - 1) as i16,
+                (col(xmax) - 1).clamp(0, cfg.width as i64 - 1) as i16,
+            );
+            let mut anchor = (first_col, sp.first_row);
+            let (y0, y1) = (sp.first_row as i32, sp.last_row as i32);
+            walk_edges(&sp.edges, s, y0, y1, |y, xl, xr| {
+                let (xl, xr) = (xl.max(0), xr.min(cfg.width as i32));
+                if xl < xr {
+                    // Both fit: on screen.
+                    anchor = (xl as i16, y as i16);
+                }
+                xl >= xr
+            });
             let entry = Stored {
                 plane: sp.plane,
                 color: sp.color,
@@ -111,8 +129,9 @@ impl<N: Scalar, const P: usize, const E: usize> PolygonTable<N, P, E> {
                 back: signed_area2(&poly.vertices) > 0,
                 first_row: sp.first_row,
                 last_row: sp.last_row,
-                first_col: col(xmin).clamp(0, cfg.width as i64 - 1) as i16,
-                last_col: (col(xmax) - 1).clamp(0, cfg.width as i64 - 1) as i16,
+                first_col,
+                last_col,
+                anchor,
                 edge_start: edge_table.len() as u32,
                 edge_count: sp.edges.len() as u8,
             };
@@ -216,9 +235,19 @@ impl<N: Scalar, const P: usize, const E: usize> PolygonTable<N, P, E> {
 
     /// Whether polygon `p` is visible over polygon `q` at pixel (`x`, `y`) — judged on their
     /// planes, whether or not they cover it: nearer, or equally near and first in the scene.
+    /// The planes are compared unwrapped ([`DepthPlane::at_unwrapped`] from each one's
+    /// [`Stored::anchor`]), so along a row the
+    /// answer changes at most once even far from either polygon, as splitting by a plane
+    /// assumes; where both cover the pixel it is the per-sample rule.
+    ///
+    /// [`DepthPlane::at_unwrapped`]: crate::number::DepthPlane::at_unwrapped
     #[inline]
     pub fn beats(&self, p: usize, q: usize, x: i32, y: i32) -> bool {
-        let (zp, zq) = (self.polys[p].plane.at(x, y), self.polys[q].plane.at(x, y));
+        let plane = |k: usize| {
+            let p = &self.polys[k];
+            (p.plane).at_unwrapped((p.anchor.0 as i32, p.anchor.1 as i32), x, y)
+        };
+        let (zp, zq) = (plane(p), plane(q));
         zp < zq || (zp == zq && p < q)
     }
 

@@ -386,6 +386,28 @@ pub mod scenes {
         Polys::new(polys)
     }
 
+    /// `n` small, steep triangles (4 to 12 pixels across, depths anywhere in 0..30000) over a
+    /// `w`×`h` screen: their planes leave the Q16.16 range within a few dozen pixels, so a
+    /// plane's value at the screen's origin, or anywhere far from its polygon, has wrapped.
+    /// Deciding sides of a plane far from its polygon (BSP's classification, splitting) must
+    /// not depend on those wrapped values.
+    pub fn steep(rng: &mut Rng, n: usize, w: f32, h: f32) -> Polys {
+        let grid = |v: f32| (v * 256.0).round() / 256.0;
+        let mut polys = Vec::new();
+        for _ in 0..n {
+            let (cx, cy) = (rng.f(0.0, w), rng.f(0.0, h));
+            let mut v = || {
+                [
+                    grid(cx + rng.f(-6.0, 6.0)),
+                    grid(cy + rng.f(-6.0, 6.0)),
+                    grid(rng.f(0.0, 30000.0)),
+                ]
+            };
+            polys.push(vec![v(), v(), v()]);
+        }
+        Polys::new(polys)
+    }
+
     /// Three long planar bars (parallelograms) in cyclic overlap: bar 1 lies over bar 0 at
     /// their crossing, bar 0 over bar 2, bar 2 over bar 1, so no painter's order of whole
     /// polygons exists; splitting one resolves it. Sized for a 48×48
