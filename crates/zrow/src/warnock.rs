@@ -381,21 +381,55 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, 
         a.poly < b.poly
     }
 
-    /// Sorts `list[start..]` (insertion sort: lists are short and a child's is nearly in its
-    /// parent's order; it never panics, whatever the comparisons say).
+    /// Sorts `list[start..]`: insertion sort for short lists (a child's list is nearly in its
+    /// parent's order), heapsort for long ones (a band's list near the top of the quadtree
+    /// holds every polygon reaching the band, in scene order: insertion sort would be
+    /// quadratic there). Neither panics, whatever the comparisons say.
     fn sort_from(&mut self, start: usize) {
-        for k in start + 1..self.list.len() {
-            let mut j = k;
-            while j > start {
-                let (Some(a), Some(b)) = (self.list.get(j - 1), self.list.get(j)) else {
-                    break;
-                };
-                if !self.before(b, a) {
-                    break;
+        let n = self.list.len().saturating_sub(start);
+        if n <= 32 {
+            for k in start + 1..self.list.len() {
+                let mut j = k;
+                while j > start && self.less(j, j - 1) {
+                    self.list.swap(j - 1, j);
+                    j -= 1;
                 }
-                self.list.swap(j - 1, j);
-                j -= 1;
             }
+            return;
+        }
+        for root in (0..n / 2).rev() {
+            self.sift_down(start, root, n);
+        }
+        for end in (1..n).rev() {
+            self.list.swap(start, start + end);
+            self.sift_down(start, 0, end);
+        }
+    }
+
+    /// Whether `list[a]` sorts before `list[b]` (`false` out of range).
+    fn less(&self, a: usize, b: usize) -> bool {
+        match (self.list.get(a), self.list.get(b)) {
+            (Some(a), Some(b)) => self.before(a, b),
+            _ => false,
+        }
+    }
+
+    /// Heapsort's sift-down over `list[start..start + n]` (a max-heap in `before` order; every
+    /// index swapped is below `start + n`, the list's length).
+    fn sift_down(&mut self, start: usize, mut root: usize, n: usize) {
+        loop {
+            let mut child = 2 * root + 1;
+            if child >= n {
+                return;
+            }
+            if child + 1 < n && self.less(start + child, start + child + 1) {
+                child += 1;
+            }
+            if !self.less(start + root, start + child) {
+                return;
+            }
+            self.list.swap(start + root, start + child);
+            root = child;
         }
     }
 

@@ -166,6 +166,19 @@ fn dense_scenes_equal_reference_at_every_band_size() {
     }
 }
 
+/// Lists longer than 32 entries are heapsorted, shorter ones insertion-sorted: 40 to 90
+/// polygons over one area put every list of the top levels on the heapsort path.
+#[test]
+fn long_lists_equal_reference_at_every_band_size() {
+    let mut rng = Rng(0x10_0415);
+    for k in 0..3 {
+        let p = scenes::dense(&mut rng, 40 + 25 * k, 48.0, 40.0);
+        let cfg = Config::screen(48, 40);
+        check_all_bands::<Q16_16>(&p, &cfg, &format!("long #{k}"));
+        check_all_bands::<f32>(&p, &cfg, &format!("long #{k}"));
+    }
+}
+
 #[test]
 fn cyclic_overlap_equals_reference_at_every_band_size() {
     let cfg = Config::screen(48, 48);
