@@ -12,6 +12,9 @@ const FP: usize = 2_500;
 const FE: usize = 7_500;
 /// Active-list capacity (scan-line).
 const FA: usize = 320;
+/// Warnock's list capacity at bands of 16 rows: `n·(log2(16) + 2)` for the `n` polygons
+/// reaching the busiest band, with room to spare.
+const FL: usize = 6 * FP;
 
 /// Calls `$run!(TYPE)` for every compared method, in report order.
 macro_rules! for_each_method {
@@ -21,9 +24,7 @@ macro_rules! for_each_method {
         $run!(zrow::Scanline<Q16_16, 240, FP, FE, FA>);
         $run!(zrow::bsp::Bsp<Q16_16, 240, FP, FE, 20_480, 8_192>);
         $run!(zrow::abuffer::ABuffer<Q16_16, 240, FP, FE, 16>);
-        // TODO(lead): enable after merge
-        // $run!(zrow::tiled::Tiled<Q16_16, 240, 16, FP, FE>);
-        // TODO(lead): enable after merge
-        // $run!(zrow::warnock::Warnock<Q16_16, 240, 256, FP, FE, 65_536>);
+        $run!(zrow::tiled::Tiled<Q16_16, 240, 16, FP, FE>);
+        $run!(zrow::warnock::Warnock<Q16_16, 240, 16, FP, FE, FL>);
     };
 }

@@ -11,8 +11,7 @@ use std::time::{Duration, Instant};
 use zrow::abuffer::ABuffer;
 use zrow::bsp::Bsp;
 use zrow::depthsort::DepthSort;
-// TODO(lead): enable after merge
-// use zrow::{tiled::Tiled, warnock::Warnock};
+use zrow::{tiled::Tiled, warnock::Warnock};
 use zrow::{Config, Face, FrameBuffer, FrameStats, Mesh, Renderer, Requirements, Scene};
 use zrow::{Scanline, ScreenScene, Vec3, ZBuffer, Q16_16};
 
@@ -28,6 +27,9 @@ const A: usize = 8_192;
 const Q: usize = 65_534;
 /// BSP tree depth bound.
 const D: usize = 65_534;
+/// Warnock's list capacity: one band of `SIZE` rows (the whole screen, so the seed's full
+/// quadtree) reached by `P` polygons needs `P·(log2(SIZE) + 2)` entries.
+const L: usize = P * (SIZE.ilog2() as usize + 2);
 
 /// Every method compared, in the order the table lists them: ONE line per method. The first
 /// argument is its RAM formula (see [`ram`]), `None` for "RAM_BYTES as built".
@@ -38,10 +40,8 @@ pub fn methods() -> Vec<Method> {
         method::<Scanline<Q16_16, SIZE, P, E, A>>(Some(ram::scanline)),
         method::<Bsp<Q16_16, SIZE, P, E, Q, D>>(Some(ram::bsp)),
         method::<ABuffer<Q16_16, SIZE, P, E, 16>>(Some(ram::abuffer)),
-        // TODO(lead): enable after merge
-        // method::<Tiled<Q16_16, SIZE, 16, P, E>>(None),
-        // TODO(lead): enable after merge
-        // method::<Warnock<Q16_16, SIZE, 512, P, E, 262_144>>(None),
+        method::<Tiled<Q16_16, SIZE, 16, P, E>>(Some(ram::tiled)),
+        method::<Warnock<Q16_16, SIZE, SIZE, P, E, L>>(Some(ram::warnock)),
     ]
 }
 
@@ -60,8 +60,9 @@ pub struct Need {
 
 /// RAM formulas: bytes each method needs with every capacity sized to the scene.
 pub mod ram {
-    use super::{Need, D};
+    use super::{Need, D, SIZE};
     use zrow::{abuffer::ABuffer, bsp::Bsp, depthsort::DepthSort, Q16_16};
+    use zrow::{tiled::Tiled, warnock::Warnock};
 
     /// `zrow::scanline::ram_bytes` (its tables at the sizes required, plus two rows).
     pub fn scanline(n: &Need) -> usize {
@@ -113,6 +114,35 @@ pub mod ram {
             0,
         ];
         linear(base, slope, n, 0)
+    }
+    /// `Tiled::<Q16_16, W, 16, P, E>::RAM_BYTES` as [`depthsort`] (bands of 16 rows).
+    pub fn tiled(n: &Need) -> usize {
+        type T<const W: usize, const P: usize, const E: usize> = Tiled<Q16_16, W, 16, P, E>;
+        let base = T::<1, 1, 1>::RAM_BYTES;
+        let slope = [
+            T::<65, 1, 1>::RAM_BYTES - base,
+            T::<1, 65, 1>::RAM_BYTES - base,
+            T::<1, 1, 65>::RAM_BYTES - base,
+            0,
+        ];
+        linear(base, slope, n, 0)
+    }
+    /// `Warnock::<Q16_16, W, SIZE, P, E, L>::RAM_BYTES` as [`depthsort`] (one band of
+    /// `SIZE` rows: the seed's quadtree over the whole screen), with the list capacity the
+    /// scene needs, `L = polygons·(log2(SIZE) + 2)` (every polygon reaches the one band).
+    pub fn warnock(n: &Need) -> usize {
+        type T<const W: usize, const P: usize, const E: usize, const L: usize> =
+            Warnock<Q16_16, W, SIZE, P, E, L>;
+        let base = T::<1, 1, 1, 1>::RAM_BYTES;
+        let slope = [
+            T::<65, 1, 1, 1>::RAM_BYTES - base,
+            T::<1, 65, 1, 1>::RAM_BYTES - base,
+            T::<1, 1, 65, 1>::RAM_BYTES - base,
+            0,
+        ];
+        let list = n.req.polygons as usize * (SIZE.ilog2() as usize + 2);
+        let entries = (T::<1, 1, 1, 65>::RAM_BYTES - base) * list.saturating_sub(1) / 64;
+        linear(base, slope, n, entries)
     }
     fn linear(base: usize, slope: [usize; 4], n: &Need, extra: usize) -> usize {
         let (p, e) = (n.req.polygons as usize, n.req.edges as usize);
@@ -267,3 +297,4 @@ fn time<R: Renderer<Q16_16>>(r: &mut R, scene: &impl Scene<Q16_16>, b: &Budget) 
         runs: times.len(),
     }
 }
+
