@@ -66,6 +66,17 @@ pub type DemoDepthSort<N> =
 /// The demo's A-buffer (fragments per row).
 pub type DemoABuffer<N> =
     zrow::abuffer::ABuffer<N, { SIZE as usize }, DEMO_POLYGONS, DEMO_EDGES, 4096>;
+/// The demo's tiled 16-bit z-buffer (bands of 16 rows).
+pub type DemoTiled<N> = zrow::tiled::Tiled<N, { SIZE as usize }, 16, DEMO_POLYGONS, DEMO_EDGES>;
+/// The demo's Warnock (bands of 16 rows; list room for every polygon in a band, 6 times).
+pub type DemoWarnock<N> = zrow::warnock::Warnock<
+    N,
+    { SIZE as usize },
+    16,
+    DEMO_POLYGONS,
+    DEMO_EDGES,
+    { 6 * DEMO_POLYGONS },
+>;
 /// The demo's BSP tree.
 pub type DemoBsp<N> =
     zrow::bsp::Bsp<N, { SIZE as usize }, DEMO_POLYGONS, DEMO_EDGES, DEMO_PIECES, DEMO_BSP_DEPTH>;
@@ -179,6 +190,8 @@ impl View {
 pub struct Methods<N> {
     scanline: Option<Box<DemoScanline<N>>>,
     zbuffer: Option<Box<DemoZBuffer<N>>>,
+    tiled: Option<Box<DemoTiled<N>>>,
+    warnock: Option<Box<DemoWarnock<N>>>,
     depth_sort: Option<Box<DemoDepthSort<N>>>,
     bsp: Option<Box<DemoBsp<N>>>,
     abuffer: Option<Box<DemoABuffer<N>>>,
@@ -189,6 +202,8 @@ impl<N: zrow::Scalar> Methods<N> {
         Methods {
             scanline: None,
             zbuffer: None,
+            tiled: None,
+            warnock: None,
             depth_sort: None,
             bsp: None,
             abuffer: None,
@@ -200,6 +215,8 @@ impl<N: zrow::Scalar> Methods<N> {
         match algo.resolve() {
             Algo::Scanline | Algo::Auto => DemoScanline::<N>::RAM_BYTES,
             Algo::ZBuffer => DemoZBuffer::<N>::RAM_BYTES,
+            Algo::Tiled => DemoTiled::<N>::RAM_BYTES,
+            Algo::Warnock => DemoWarnock::<N>::RAM_BYTES,
             Algo::DepthSort => DemoDepthSort::<N>::RAM_BYTES,
             Algo::Bsp => DemoBsp::<N>::RAM_BYTES,
             Algo::ABuffer => DemoABuffer::<N>::RAM_BYTES,
@@ -279,6 +296,8 @@ where
     match view.algo().resolve() {
         Algo::Scanline | Algo::Auto => render_with(made(&mut m.scanline), view, model, display),
         Algo::ZBuffer => render_with(made(&mut m.zbuffer), view, model, display),
+        Algo::Tiled => render_with(made(&mut m.tiled), view, model, display),
+        Algo::Warnock => render_with(made(&mut m.warnock), view, model, display),
         Algo::DepthSort => render_with(made(&mut m.depth_sort), view, model, display),
         Algo::Bsp => render_with(made(&mut m.bsp), view, model, display),
         Algo::ABuffer => render_with(made(&mut m.abuffer), view, model, display),

@@ -44,6 +44,15 @@ pub const HOST_FRAGMENTS: usize = 1 << 16;
 /// The A-buffer at the host's capacities.
 pub type HostABuffer<N> =
     zrow::abuffer::ABuffer<N, HOST_WIDTH, HOST_POLYGONS, HOST_EDGES, HOST_FRAGMENTS>;
+/// Rows per band of the host's tiled z-buffer and Warnock (a band of 16 rows, as on the MCU).
+pub const HOST_BAND: usize = 16;
+/// The tiled 16-bit z-buffer at the host's capacities.
+pub type HostTiled<N> = zrow::tiled::Tiled<N, HOST_WIDTH, HOST_BAND, HOST_POLYGONS, HOST_EDGES>;
+/// Warnock's list room: every polygon reaching one band, `log2(16) + 2` times.
+pub const HOST_WARNOCK_LIST: usize = HOST_POLYGONS * 6;
+/// Warnock at the host's capacities.
+pub type HostWarnock<N> =
+    zrow::warnock::Warnock<N, HOST_WIDTH, HOST_BAND, HOST_POLYGONS, HOST_EDGES, HOST_WARNOCK_LIST>;
 /// The BSP tree at the host's capacities.
 pub type HostBsp<N> =
     zrow::bsp::Bsp<N, HOST_WIDTH, HOST_POLYGONS, HOST_EDGES, HOST_PIECES, HOST_BSP_DEPTH>;
@@ -55,8 +64,13 @@ pub enum Algo {
     Scanline,
     /// The z-buffer (`zrow::ZBuffer`).
     ZBuffer,
+    /// The tiled 16-bit z-buffer (`zrow::tiled::Tiled`): exact where depths differ by more
+    /// than one 16-bit step of the frame's depth range.
+    Tiled,
     /// Depth-sort (`zrow::depthsort::DepthSort`).
     DepthSort,
+    /// Warnock's area subdivision (`zrow::warnock::Warnock`).
+    Warnock,
     /// The BSP tree (`zrow::bsp::Bsp`).
     Bsp,
     /// Transparency, A-buffer style (`zrow::abuffer::ABuffer`): blends translucent faces
@@ -71,15 +85,21 @@ impl Algo {
     pub const ALL: &'static [(&'static str, Algo)] = &[
         ("scanline", Algo::Scanline),
         ("zbuffer", Algo::ZBuffer),
+        ("tiled", Algo::Tiled),
         ("depth-sort", Algo::DepthSort),
+        ("warnock", Algo::Warnock),
         ("bsp", Algo::Bsp),
         ("abuffer", Algo::ABuffer),
         ("auto", Algo::Auto),
     ];
 
-    /// The method `auto` stands for: the scan-line method, which is exact, streams rows and
-    /// was the fastest exact method at every size in the comparison (docs/methods/foley.md).
-    /// Every other name stands for itself.
+    /// The method `auto` stands for. For now always the scan-line method, zrow's core: exact,
+    /// streaming rows, with RAM that follows the scene (`zrow::scanline::ram_bytes`). It is
+    /// neither always the fastest nor always the smallest: the z-buffer, the tiled z-buffer
+    /// and the A-buffer take fewer instructions on many small polygons, and the A-buffer's
+    /// tables are a little smaller at 100 polygons (docs/methods/foley.md). Choosing the
+    /// cheapest exact method from the scene's structure is issue 7's work. Every other name
+    /// stands for itself.
     pub fn resolve(self) -> Algo {
         match self {
             Algo::Auto => Algo::Scanline,
@@ -297,6 +317,8 @@ pub(crate) fn draw<N: Scalar + Send + Sync, S: Scene<N> + Sync>(
     match algo.resolve() {
         Algo::Scanline | Algo::Auto => draw_with::<N, S, HostScanline<N>>(scene, cfg, blame),
         Algo::ZBuffer => draw_with::<N, S, HostZBuffer<N>>(scene, cfg, blame),
+        Algo::Tiled => draw_with::<N, S, HostTiled<N>>(scene, cfg, blame),
+        Algo::Warnock => draw_with::<N, S, HostWarnock<N>>(scene, cfg, blame),
         Algo::DepthSort => draw_with::<N, S, HostDepthSort<N>>(scene, cfg, blame),
         Algo::Bsp => draw_with::<N, S, HostBsp<N>>(scene, cfg, blame),
         Algo::ABuffer => draw_with::<N, S, HostABuffer<N>>(scene, cfg, blame),

@@ -297,4 +297,3 @@ fn time<R: Renderer<Q16_16>>(r: &mut R, scene: &impl Scene<Q16_16>, b: &Budget) 
         runs: times.len(),
     }
 }
-

@@ -113,8 +113,7 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     /// for any two pixels of a screen (offsets below 2^16, steps below 2^31); `plane.z_ref`
     /// itself may have wrapped, its reference pixel lying off the polygon. f32:
     /// [`DepthPlane::at`] (it never wraps).
-    fn unwrapped(plane: &DepthPlane<Self>, anchor: (i32, i32), i: i32, j: i32)
-        -> Self::Unwrapped;
+    fn unwrapped(plane: &DepthPlane<Self>, anchor: (i32, i32), i: i32, j: i32) -> Self::Unwrapped;
 
     /// `a0 + (a1 − a0) · (bound − c0) / (c1 − c0)`: the value of an attribute `a` where a
     /// coordinate `c` going from `c0` to `c1` crosses `bound` (a clip plane). Computed wide

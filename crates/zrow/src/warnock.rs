@@ -23,14 +23,14 @@
 //!
 //! **Made exact** (every pixel is the per-sample nearest polygon, ties included). An area is a
 //! rectangle of pixels; its samples are their centres. Coverage is the top-left rule as integer
-//! edge functions ([`PolygonTable::covers`]), each linear, plus a row range, so the covered
+//! edge functions ([`PolygonTable::covers`](crate::polygons::PolygonTable::covers)), each linear, plus a row range, so the covered
 //! samples are a convex set and the area's four **corner samples** decide: all four covered ⇒
 //! every sample covered (surrounding); one edge or the row range excluding all four ⇒ none
 //! (disjoint); the sample box (`first_col..=last_col` × `first_row..=last_row`) outside the
 //! area ⇒ disjoint (min-max), inside ⇒ contained; else intersecting — conservatively, as it may
 //! still miss every sample: at one pixel the four corners are its centre and the test is exact.
 //! Depth is linear too, so a plane's extremes over a rectangle are at its corners, and `S`
-//! beats `Q` ([`PolygonTable::beats`]: nearer, or as near and first in the scene) at every
+//! beats `Q` ([`PolygonTable::beats`](crate::polygons::PolygonTable::beats): nearer, or as near and first in the scene) at every
 //! sample of a rectangle if it does at its corners (the difference of two planes is linear).
 //! `Q` is compared on the area clipped to its sample box, which holds all it covers. The hidden
 //! test keeps ties the same way: `P` goes when `(zmin_P, P) > (zmax_S, S)` in (depth, scene
@@ -47,7 +47,7 @@
 //! **Capacity.** The stack holds a band list and at most `log2(B) + 1` area lists, each a subset
 //! of it: a band reached by `n` polygons needs at most `n·(log2(B) + 2)` entries. The worst band
 //! is found before the first row is sent; more than `L` is [`Error::Capacity`]
-//! ([`Table::VisibleList`]), and nothing can fail later. RAM ([`Warnock::RAM_BYTES`]): the
+//! ([`Table::VisibleList`]), and nothing can fail later. RAM ([`Warnock::RAM_BYTES`](crate::warnock::Warnock::RAM_BYTES)): the
 //! polygon table, `B` rows of colour and depth (`B·W·(2 + size_of::<N>())` bytes), `L` list
 //! entries of 8 bytes and a flag per polygon.
 //!

@@ -115,7 +115,7 @@ fn every_method_on_dense_and_cyclic_scenes() {
 /// failed this test before `PolygonTable::beats` compared planes unwrapped).
 #[test]
 fn every_method_on_steep_planes_far_from_their_origin() {
-    let mut rng = XorShift(0x57ee_9);
+    let mut rng = XorShift(0x5_7ee9);
     for _ in 0..8 {
         let p = scenes::steep(&mut rng, 24, W as f32, H as f32);
         each_exact_method!(equals_reference::<Q16_16>(&p));

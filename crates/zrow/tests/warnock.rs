@@ -170,7 +170,7 @@ fn dense_scenes_equal_reference_at_every_band_size() {
 /// polygons over one area put every list of the top levels on the heapsort path.
 #[test]
 fn long_lists_equal_reference_at_every_band_size() {
-    let mut rng = Rng(0x10_0415);
+    let mut rng = Rng(0x0010_0415);
     for k in 0..3 {
         let p = scenes::dense(&mut rng, 40 + 25 * k, 48.0, 40.0);
         let cfg = Config::screen(48, 40);
