@@ -57,14 +57,20 @@ pub mod requirements;
 pub mod scene;
 /// Where rows go.
 pub mod sink;
+/// What a mesh's structure allows (one closed convex solid?).
+pub mod structure;
 
 // The methods, one file each, all behind [`Renderer`].
 /// Transparency in the A-buffer spirit: translucent faces blended per row.
 pub mod abuffer;
 /// The BSP tree: built with splitting, traversed in view order.
 pub mod bsp;
+/// Back-face culling alone: exact for one closed convex solid.
+pub mod cullonly;
 /// Depth-sort (Newell's painter): sort, the five tests, split.
 pub mod depthsort;
+/// Ordering alone: exact where polygons overlapping on screen never overlap in depth.
+pub mod ordered;
 /// The scan-line method: one row at a time, an edge table and an active list.
 pub mod scanline;
 /// Polygons split by another's plane, exactly (depth-sort and BSP share it).

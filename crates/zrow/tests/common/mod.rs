@@ -107,6 +107,16 @@ impl Polys {
         r: &mut R,
         cfg: &Config,
     ) -> Result<(Capture<N>, zrow::FrameStats), zrow::RenderError<()>> {
+        self.with_scene(|scene| {
+            let mut cap = Capture::new(cfg.width as usize, cfg.height as usize);
+            let stats = r.render(scene, cfg, &mut cap)?;
+            Ok((cap, stats))
+        })
+    }
+
+    /// Calls `f` with the polygons as a screen-space scene in format `N` (polygon `i` in
+    /// [`color_of`]`(i)`).
+    pub fn with_scene<N: Scalar, T>(&self, f: impl FnOnce(&ScreenScene<'_, N>) -> T) -> T {
         let mut verts = Vec::new();
         let mut idx: Vec<Vec<u16>> = Vec::new();
         for p in &self.polys {
@@ -126,15 +136,12 @@ impl Polys {
                 alpha: 255,
             })
             .collect();
-        let scene = ScreenScene {
+        f(&ScreenScene {
             mesh: Mesh {
                 vertices: &verts,
                 faces: &faces,
             },
-        };
-        let mut cap = Capture::new(cfg.width as usize, cfg.height as usize);
-        let stats = r.render(&scene, cfg, &mut cap)?;
-        Ok((cap, stats))
+        })
     }
 }
 
