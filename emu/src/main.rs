@@ -200,6 +200,15 @@ fn main() -> ! {
         };
     }
     for_each_method!(run);
+    macro_rules! structured {
+        ($t:ty, $n:ty, $scene:expr) => {
+            match cortex_m::singleton!(: $t = <$t>::new()) {
+                Some(r) => ok &= bench_format::<$n, _>(r, $scene),
+                None => unreachable!("each singleton is taken once"),
+            }
+        };
+    }
+    for_each_structured!(structured);
     hprintln!(
         "# pairs: starts={} stops={}",
         STARTS.load(Ordering::Relaxed),

@@ -28,3 +28,13 @@ macro_rules! for_each_method {
         $run!(zrow::warnock::Warnock<Q16_16, 240, 16, FP, FE, FL>);
     };
 }
+
+/// Calls `$run!(TYPE, FORMAT, "scene")` for the cheap methods `auto` picks where a scene's
+/// structure allows (zrow::structure): back-face culling alone on the cube, one closed convex
+/// solid. Compare with the scan-line lines for the same scene.
+macro_rules! for_each_structured {
+    ($run:ident) => {
+        $run!(zrow::cullonly::CullOnly<Q16_16, 240, 64, 256>, Q16_16, "cube");
+        $run!(zrow::cullonly::CullOnly<f32, 240, 64, 256>, f32, "cube");
+    };
+}

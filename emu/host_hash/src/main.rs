@@ -71,6 +71,12 @@ fn all() -> bool {
         };
     }
     for_each_method!(run);
+    macro_rules! structured {
+        ($t:ty, $n:ty, $scene:expr) => {
+            ok &= line::<$n, $t>($scene);
+        };
+    }
+    for_each_structured!(structured);
     ok
 }
 
