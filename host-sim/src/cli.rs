@@ -38,7 +38,8 @@ usage:
   --out FILE      PNG to write (8-bit RGB, exactly WxH, background black)
   --size WxH      frame size, each side 1..=2048 (default 240x240)
   --algo NAME     hidden-surface method: scanline, zbuffer, tiled, depth-sort, warnock,
-                  bsp, abuffer, or auto (default scanline)
+                  bsp, abuffer, or auto: the cheapest method exact for the scene
+                  (cull-only, ordered or scanline; default scanline)
   --format FMT    number format: q16.16 or f32 (default q16.16)
 
   --model FILE    OBJ (with its MTL colours), STL (ASCII or binary) or OFF model; it is scaled

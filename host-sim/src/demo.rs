@@ -213,7 +213,12 @@ impl<N: zrow::Scalar> Methods<N> {
     /// RAM of the renderer that draws with `algo` (its `RAM_BYTES`).
     pub fn ram_bytes(algo: Algo) -> usize {
         match algo.resolve() {
-            Algo::Scanline | Algo::Auto => DemoScanline::<N>::RAM_BYTES,
+            // The window draws `auto` with the scan-line method (it does not analyse the
+            // scene's structure; `zrow-sim render`/`render-model` do), and never offers
+            // auto's own choices.
+            Algo::Scanline | Algo::Auto | Algo::CullOnly | Algo::Ordered => {
+                DemoScanline::<N>::RAM_BYTES
+            }
             Algo::ZBuffer => DemoZBuffer::<N>::RAM_BYTES,
             Algo::Tiled => DemoTiled::<N>::RAM_BYTES,
             Algo::Warnock => DemoWarnock::<N>::RAM_BYTES,
@@ -294,7 +299,10 @@ where
     D::Error: core::fmt::Debug,
 {
     match view.algo().resolve() {
-        Algo::Scanline | Algo::Auto => render_with(made(&mut m.scanline), view, model, display),
+        // `auto` in the window: the scan-line method (see `Methods::ram_bytes`).
+        Algo::Scanline | Algo::Auto | Algo::CullOnly | Algo::Ordered => {
+            render_with(made(&mut m.scanline), view, model, display)
+        }
         Algo::ZBuffer => render_with(made(&mut m.zbuffer), view, model, display),
         Algo::Tiled => render_with(made(&mut m.tiled), view, model, display),
         Algo::Warnock => render_with(made(&mut m.warnock), view, model, display),

@@ -15,7 +15,8 @@
 
 use crate::error::SimError;
 use crate::model::{LoadedModel, ModelError};
-use crate::render::{check_capacity, draw, Algo, Format, Image};
+use crate::render::{check_capacity, choose, draw, Algo, Format, Image, Structure};
+use zrow::structure::closed_convex;
 use zrow::{Affine, Camera, Config, Light, ModelScene, Object, Requirements, Scalar, Vec3};
 use zrow::{Scene, Q16_16};
 
@@ -202,8 +203,44 @@ fn model_image<N: Scalar + Send + Sync>(
     with_scene::<N, _>(model, view, width, height, |scene, cfg| {
         let req = measure(model, scene, cfg)?;
         check_capacity(&req).map_err(|e| blame(model, e))?;
-        draw(algo, scene, cfg, |e| blame(model, e))
+        draw(algo, scene, cfg, structure(scene), |e| blame(model, e))
     })?
+}
+
+/// The scene's structure: one object whose mesh is a closed convex solid?
+fn structure<N: Scalar>(scene: &ModelScene<'_, N>) -> Structure {
+    Structure {
+        closed_convex: scene
+            .objects
+            .iter()
+            .map(|o| closed_convex(o.mesh))
+            .eq([true]),
+    }
+}
+
+/// The method `auto` chooses for `model` seen from `view` ([`choose`]: cull-only for a
+/// closed convex model, ordered where its check passes, else the scan-line method).
+pub fn choose_model(
+    model: &LoadedModel,
+    view: &View,
+    width: u16,
+    height: u16,
+    format: Format,
+) -> Result<Algo, SimError> {
+    fn run<N: Scalar + Send + Sync>(
+        m: &LoadedModel,
+        v: &View,
+        w: u16,
+        h: u16,
+    ) -> Result<Algo, SimError> {
+        with_scene::<N, _>(m, v, w, h, |scene, cfg| {
+            choose(scene, cfg, structure(scene)).map_err(|e| blame(m, e))
+        })?
+    }
+    match format {
+        Format::Q16_16 => run::<Q16_16>(model, view, width, height),
+        Format::F32 => run::<f32>(model, view, width, height),
+    }
 }
 
 /// A zrow error, blamed on the line (or triangle) of the face it names.

@@ -16,7 +16,7 @@ use crate::off::OffScene;
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 use zrow::Scanline;
 use zrow::{Config, Face, FrameBuffer, Mesh, RenderError, Renderer, Requirements, Scalar};
-use zrow::{Scene, ScreenScene, Table, Q16_16};
+use zrow::{Cull, Scene, ScreenScene, Table, Q16_16};
 
 /// Widest frame the host renders (zrow's largest viewport).
 pub const HOST_WIDTH: usize = zrow::raster::MAX_VIEWPORT as usize;
@@ -53,6 +53,10 @@ pub const HOST_WARNOCK_LIST: usize = HOST_POLYGONS * 6;
 /// Warnock at the host's capacities.
 pub type HostWarnock<N> =
     zrow::warnock::Warnock<N, HOST_WIDTH, HOST_BAND, HOST_POLYGONS, HOST_EDGES, HOST_WARNOCK_LIST>;
+/// Back-face culling alone at the host's capacities (`auto`'s choice for a convex solid).
+pub type HostCullOnly<N> = zrow::cullonly::CullOnly<N, HOST_WIDTH, HOST_POLYGONS, HOST_EDGES>;
+/// Ordering alone at the host's capacities (`auto`'s choice for depth-separated polygons).
+pub type HostOrdered<N> = zrow::ordered::Ordered<N, HOST_WIDTH, HOST_POLYGONS, HOST_EDGES>;
 /// The BSP tree at the host's capacities.
 pub type HostBsp<N> =
     zrow::bsp::Bsp<N, HOST_WIDTH, HOST_POLYGONS, HOST_EDGES, HOST_PIECES, HOST_BSP_DEPTH>;
@@ -76,8 +80,14 @@ pub enum Algo {
     /// Transparency, A-buffer style (`zrow::abuffer::ABuffer`): blends translucent faces
     /// (OFF alpha below 255) over the opaque surface; with every face opaque it is exact.
     ABuffer,
-    /// The cheapest exact method for the scene ([`Algo::resolve`]).
+    /// The cheapest exact method for the scene ([`choose`]).
     Auto,
+    /// Back-face culling alone (`zrow::cullonly::CullOnly`): only as `auto`'s choice for one
+    /// closed convex solid (not an `--algo` name: it is not exact on other scenes).
+    CullOnly,
+    /// Ordering alone (`zrow::ordered::Ordered`): only as `auto`'s choice where polygons
+    /// overlapping on screen never overlap in depth.
+    Ordered,
 }
 
 impl Algo {
@@ -93,18 +103,10 @@ impl Algo {
         ("auto", Algo::Auto),
     ];
 
-    /// The method `auto` stands for. For now always the scan-line method, zrow's core: exact,
-    /// streaming rows, with RAM that follows the scene (`zrow::scanline::ram_bytes`). It is
-    /// neither always the fastest nor always the smallest: the z-buffer, the tiled z-buffer
-    /// and the A-buffer take fewer instructions on many small polygons, and the A-buffer's
-    /// tables are a little smaller at 100 polygons (docs/methods/foley.md). Choosing the
-    /// cheapest exact method from the scene's structure is issue 7's work. Every other name
-    /// stands for itself.
+    /// The method a name other than `auto` stands for (itself); `auto` is chosen per scene by
+    /// [`choose`], from the scene's structure.
     pub fn resolve(self) -> Algo {
-        match self {
-            Algo::Auto => Algo::Scanline,
-            a => a,
-        }
+        self
     }
 
     /// The method called `name`, if there is one.
@@ -112,12 +114,16 @@ impl Algo {
         Self::ALL.iter().find(|(n, _)| *n == name).map(|&(_, a)| a)
     }
 
-    /// Its `--algo` name.
+    /// Its `--algo` name (`auto`'s own choices: their renderers' names).
     pub fn name(self) -> &'static str {
-        Self::ALL
-            .iter()
-            .find(|&&(_, a)| a == self)
-            .map_or("?", |&(n, _)| n)
+        match self {
+            Algo::CullOnly => "cull-only",
+            Algo::Ordered => "ordered",
+            _ => Self::ALL
+                .iter()
+                .find(|&&(_, a)| a == self)
+                .map_or("?", |&(n, _)| n),
+        }
     }
 
     /// The accepted names, comma-separated (for messages).
@@ -296,26 +302,124 @@ fn screen<N: Scalar + Send + Sync>(
     height: u16,
     algo: Algo,
 ) -> Result<Image, SimError> {
+    with_screen::<N, _>(scene, width, height, |screen, cfg| {
+        draw(algo, screen, cfg, Structure::default(), |e| {
+            core_error(scene, e)
+        })
+    })
+}
+
+/// The method `auto` chooses for `scene` at this size in `format` ([`choose`]: screen-space
+/// scenes are not culled, so cull-only never applies; ordered where its check passes).
+pub fn choose_screen(
+    scene: &OffScene,
+    width: u16,
+    height: u16,
+    format: Format,
+) -> Result<Algo, SimError> {
+    fn run<N: Scalar + Send + Sync>(s: &OffScene, w: u16, h: u16) -> Result<Algo, SimError> {
+        with_screen::<N, _>(s, w, h, |screen, cfg| {
+            choose(screen, cfg, Structure::default()).map_err(|e| core_error(s, e))
+        })
+    }
+    match format {
+        Format::Q16_16 => run::<Q16_16>(scene, width, height),
+        Format::F32 => run::<f32>(scene, width, height),
+    }
+}
+
+/// Measures and checks `scene` at this size in format `N`, then calls `f` with it as a zrow
+/// screen-space scene.
+fn with_screen<N: Scalar + Send + Sync, T>(
+    scene: &OffScene,
+    width: u16,
+    height: u16,
+    f: impl FnOnce(&ScreenScene<'_, N>, &Config) -> Result<T, SimError>,
+) -> Result<T, SimError> {
     let req = measure::<N>(scene, width, height)?;
     check_capacity(&req).map_err(|e| core_error(scene, e))?;
     let vertices = scene.vertices_in::<N>()?;
     let faces = faces(scene);
-    let screen = screen_scene(&vertices, &faces);
-    let cfg = Config::screen(width, height);
-    draw(algo, &screen, &cfg, |e| core_error(scene, e))
+    f(
+        &screen_scene(&vertices, &faces),
+        &Config::screen(width, height),
+    )
+}
+
+/// What a scene's structure allows, for [`choose`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Structure {
+    /// The scene is one closed convex solid (`zrow::structure::closed_convex`).
+    pub closed_convex: bool,
+}
+
+/// `auto`'s rule: the cheapest method that is exact for this scene, from its structure.
+///
+/// 1. One closed convex solid drawn with back faces culled: **cull-only** — no depth test at
+///    all (its front faces never overlap on screen).
+/// 2. Polygons that overlap on screen never overlap in depth (checked exactly on this frame's
+///    polygons, `zrow::ordered::Ordered::exact_for`): **ordered** — a sort, no depth test.
+/// 3. Otherwise the **scan-line** method.
+///
+/// (A static scene's precomputed BSP order is not chosen yet.) Runs the check on a thread
+/// with room for the host's polygon table. Errors are the scene's, as a render would give.
+pub fn choose<N: Scalar + Send + Sync, S: Scene<N> + Sync>(
+    scene: &S,
+    cfg: &Config,
+    structure: Structure,
+) -> Result<Algo, zrow::Error> {
+    if structure.closed_convex && cfg.cull == Cull::Back {
+        return Ok(Algo::CullOnly);
+    }
+    let ordered = on_big_stack(HostOrdered::<N>::RAM_BYTES, || {
+        let mut check = HostOrdered::<N>::default();
+        check.exact_for(scene, cfg)
+    })
+    .map_err(|_| zrow::Error::BadConfig)??;
+    Ok(if ordered {
+        Algo::Ordered
+    } else {
+        Algo::Scanline
+    })
+}
+
+/// Runs `f` on a thread whose stack holds a renderer of `bytes` (three copies, as an
+/// unoptimised build may make while constructing it) and the work's own frames.
+fn on_big_stack<T: Send>(bytes: usize, f: impl FnOnce() -> T + Send) -> Result<T, SimError> {
+    std::thread::scope(|s| {
+        let worker = std::thread::Builder::new()
+            .name("zrow-render".into())
+            .stack_size(3 * bytes + (4 << 20))
+            .spawn_scoped(s, f)
+            .map_err(SimError::Thread)?;
+        Ok(worker
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
+    })
 }
 
 /// Draws `scene` with method `algo` at the host's capacities into a new [`Image`], on a thread
 /// of its own (see the module doc); `blame` turns a zrow error into the caller's message.
-/// Measure and [`check_capacity`] first: this does not.
+/// `auto` is resolved by [`choose`] with the scene's `structure`. Measure and
+/// [`check_capacity`] first: this does not.
 pub(crate) fn draw<N: Scalar + Send + Sync, S: Scene<N> + Sync>(
     algo: Algo,
     scene: &S,
     cfg: &Config,
+    structure: Structure,
     blame: impl FnOnce(zrow::Error) -> SimError,
 ) -> Result<Image, SimError> {
-    match algo.resolve() {
+    let algo = match algo {
+        Algo::Auto => match choose::<N, S>(scene, cfg, structure) {
+            Ok(a) => a,
+            Err(e) => return Err(blame(e)),
+        },
+        a => a,
+    };
+    match algo {
         Algo::Scanline | Algo::Auto => draw_with::<N, S, HostScanline<N>>(scene, cfg, blame),
+        Algo::CullOnly => draw_with::<N, S, HostCullOnly<N>>(scene, cfg, blame),
+        Algo::Ordered => draw_with::<N, S, HostOrdered<N>>(scene, cfg, blame),
         Algo::ZBuffer => draw_with::<N, S, HostZBuffer<N>>(scene, cfg, blame),
         Algo::Tiled => draw_with::<N, S, HostTiled<N>>(scene, cfg, blame),
         Algo::Warnock => draw_with::<N, S, HostWarnock<N>>(scene, cfg, blame),
@@ -334,25 +438,13 @@ fn draw_with<N: Scalar + Send + Sync, S: Scene<N> + Sync, R: Renderer<N> + Defau
     let (width, height) = (cfg.width, cfg.height);
     let mut pixels = vec![Rgb565::BLACK; width as usize * height as usize];
     let mut frame = FrameBuffer::new(&mut pixels, width as usize);
-    // Room for the renderer, a copy or two of it that an unoptimised build makes while
-    // constructing it, and the render's own frames.
-    let stack = 3 * R::RAM_BYTES + (4 << 20);
-    let result = std::thread::scope(|s| {
-        let worker = std::thread::Builder::new()
-            .name("zrow-render".into())
-            .stack_size(stack)
-            .spawn_scoped(s, || {
-                let mut renderer = R::default();
-                renderer.render(scene, cfg, &mut frame).map(|_| ())
-            })
-            .map_err(SimError::Thread)?;
-        worker
-            .join()
-            .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
-            .map_err(|e| match e {
-                RenderError::Scene(e) => blame(e),
-                RenderError::Sink(never) => match never {},
-            })
+    let result = on_big_stack(R::RAM_BYTES, || {
+        let mut renderer = R::default();
+        renderer.render(scene, cfg, &mut frame).map(|_| ())
+    })?
+    .map_err(|e| match e {
+        RenderError::Scene(e) => blame(e),
+        RenderError::Sink(never) => match never {},
     });
     result?;
     Ok(Image {
