@@ -7,7 +7,7 @@
 //! ```
 //!
 //! Prints the frame's statistics once; divide callgrind's total for `Scanline::render` by the
-//! frame count. Scenes from `zrow-scenes`: cube, mesh1k, random400.
+//! frame count. Scenes from `zrow-scenes`: cube, mesh1k, random400, foley100, foley2500.
 
 use std::hint::black_box;
 use zrow::{Row, RowSink, Scanline, Q16_16};
@@ -22,7 +22,7 @@ impl<N> RowSink<N> for Sink {
 }
 
 fn run<N: zrow_scenes::Format>(name: &str, frames: usize) {
-    let mut r = Box::new(Scanline::<N, 240, 2048, 6144, 512>::new());
+    let mut r = Box::new(Scanline::<N, 240, 4096, 12288, 512>::new());
     let mut sink = Sink(0);
     zrow_scenes::with_scene::<N, _>(name, 0.0, |scene, cfg, _| {
         for k in 0..frames {

@@ -318,15 +318,20 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
         }
     }
 
-    /// Insertion sort by left end: the order barely changes from row to row.
+    /// Insertion sort by left end (stable): the order barely changes from row to row, but a
+    /// polygon entering the list arrives at its end, so each entry out of order is placed by
+    /// a binary search of the sorted part and one rotation (a block move), not by swapping
+    /// it down one place at a time — with 230 polygons active, that swapping was a third of
+    /// the frame.
     fn sort_active(&mut self) {
         let a = &mut self.active;
         let mut moved = false;
         for i in 1..a.len() {
-            let mut j = i;
-            while j > 0 && a[j - 1].xl > a[j].xl {
-                a.swap(j - 1, j);
-                j -= 1;
+            if a[i - 1].xl > a[i].xl {
+                let x = a[i].xl;
+                // `a[..i]` is sorted; after the entries at or left of x, as the swaps would.
+                let pos = a[..i].partition_point(|e| e.xl <= x);
+                a[pos..=i].rotate_right(1);
                 moved = true;
             }
         }
