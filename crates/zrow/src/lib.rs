@@ -17,10 +17,10 @@
 //!     q(2.0, 0.0, 6.0), q(6.0, 0.0, 6.0), q(4.0, 4.0, 0.0), // s2
 //! ];
 //! let faces = [
-//!     Face { indices: &[0, 1, 2], color: Rgb565::RED, alpha: 255 },
+//!     Face { indices: &[0u16, 1, 2], color: Rgb565::RED, alpha: 255 },
 //!     Face { indices: &[3, 4, 5], color: Rgb565::GREEN, alpha: 255 },
 //! ];
-//! let scene = ScreenScene { mesh: Mesh { vertices: &vertices, faces: &faces } };
+//! let scene = ScreenScene { mesh: Mesh::new(&vertices, &faces) };
 //!
 //! // Capacities: 8-pixel rows, 2 polygons, 8 edges, 2 polygons active in a row.
 //! let mut renderer = Scanline::<Q16_16, 8, 2, 8, 2>::new();
