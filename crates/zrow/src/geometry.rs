@@ -267,7 +267,11 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
         let mut no = 0u32;
         for obj in self.objects {
             let mv = self.camera.view.then_after(&obj.transform);
-            let to_view = normal_matrix(&mv);
+            let to_view = if obj.mesh.normals.is_empty() {
+                None // not needed: every normal comes from the cross product
+            } else {
+                normal_matrix(&mv)
+            };
             for (k, face) in obj.mesh.faces.iter().enumerate() {
                 let this = no;
                 no += 1;
