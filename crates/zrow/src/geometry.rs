@@ -74,13 +74,10 @@ fn gather<N: Scalar, I: MeshIndex>(
     }
     let mut out = Vec::new();
     for &i in face.indices {
-        let v = *mesh
-            .vertices
-            .get(i.index())
-            .ok_or(Error::IndexOutOfRange {
-                face: no,
-                index: i.index() as u32,
-            })?;
+        let v = *mesh.vertices.get(i.index()).ok_or(Error::IndexOutOfRange {
+            face: no,
+            index: i.index() as u32,
+        })?;
         if !(v.x.is_finite() && v.y.is_finite() && v.z.is_finite()) {
             return Err(Error::NonFinite { face: no });
         }
