@@ -2,7 +2,12 @@
 //!
 //! - **Model mode** ([`ModelScene`]): vertices go model → view by one affine transform per
 //!   object; the seeds' normal-versus-view test drops back faces ([`crate::backface`]); the face
-//!   is flat (Lambert) shaded from the directional light; the polygon is clipped in clip space
+//!   is flat (Lambert) shaded from the directional light. The face normal is the cross product
+//!   of the face's first two view-space edges, or, for a mesh with precomputed
+//!   [`normals`](crate::scene::Mesh::normals), the given normal taken to view space by the
+//!   cofactor matrix of the object's transform (right for any scale or mirror). Depth and
+//!   coverage come from the vertices either way; only shading, and the cull decision for a
+//!   face seen within rounding of edge-on, can differ; the polygon is clipped in clip space
 //!   against the near and far planes (so only w ≥ near > 0 is ever divided by) and a guard band
 //!   ([`GUARD_BAND`](crate::raster::GUARD_BAND) pixels round the viewport), then divided and snapped. Depth is
 //!   `DEPTH_RANGE · (1 − near/w) · far/(far − near)` under perspective (affine in 1/w, hence
