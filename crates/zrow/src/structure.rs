@@ -6,7 +6,7 @@
 //! meant for start-up or the build host, not for every frame.
 
 use crate::number::Scalar;
-use crate::scene::Mesh;
+use crate::scene::{Mesh, MeshIndex};
 
 /// Whether `mesh` is a closed convex solid with outward (counter-clockwise seen from outside)
 /// faces:
@@ -20,9 +20,9 @@ use crate::scene::Mesh;
 ///   and its front faces never overlap on screen.
 ///
 /// A mesh with no faces is not one.
-pub fn closed_convex<N: Scalar>(mesh: &Mesh<'_, N>) -> bool {
-    let v = |i: u16| -> Option<[f64; 3]> {
-        let p = mesh.vertices.get(i as usize)?;
+pub fn closed_convex<N: Scalar, I: MeshIndex>(mesh: &Mesh<'_, N, I>) -> bool {
+    let v = |i: usize| -> Option<[f64; 3]> {
+        let p = mesh.vertices.get(i)?;
         let c = [p.x.to_f64(), p.y.to_f64(), p.z.to_f64()];
         c.iter().all(|x| x.is_finite()).then_some(c)
     };
@@ -31,11 +31,11 @@ pub fn closed_convex<N: Scalar>(mesh: &Mesh<'_, N>) -> bool {
     }
     let mut extent: f64 = 0.0;
     for f in mesh.faces {
-        if f.indices.len() < 3 || f.indices.iter().any(|&i| v(i).is_none()) {
+        if f.indices.len() < 3 || f.indices.iter().any(|&i| v(i.index()).is_none()) {
             return false;
         }
         for &i in f.indices {
-            if let Some(c) = v(i) {
+            if let Some(c) = v(i.index()) {
                 extent = c.iter().fold(extent, |m, x| m.max(x.abs()));
             }
         }
@@ -90,9 +90,9 @@ pub fn closed_convex<N: Scalar>(mesh: &Mesh<'_, N>) -> bool {
     true
 }
 
-/// A face's directed edges `(a, b)`, in order, the last closing the loop.
-fn edges(f: &[u16]) -> impl Iterator<Item = (u16, u16)> + '_ {
+/// A face's directed edges `(a, b)` as vertex numbers, in order, the last closing the loop.
+fn edges<I: MeshIndex>(f: &[I]) -> impl Iterator<Item = (usize, usize)> + '_ {
     f.iter()
         .zip(f.iter().cycle().skip(1))
-        .map(|(&a, &b)| (a, b))
+        .map(|(&a, &b)| (a.index(), b.index()))
 }

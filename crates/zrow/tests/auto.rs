@@ -44,10 +44,7 @@ fn the_cube_is_closed_and_convex_the_torus_is_not() {
         &zrow_scenes::mesh::<Q16_16>("mesh1k").unwrap()
     ));
     // Open: one face missing.
-    let open = Mesh {
-        vertices: cube.vertices,
-        faces: &cube.faces[1..],
-    };
+    let open = Mesh::new(cube.vertices, &cube.faces[1..]);
     assert!(!closed_convex(&open));
     // Inconsistent: one face turned over.
     let flipped: Vec<Vec<u16>> = cube
@@ -66,10 +63,7 @@ fn the_cube_is_closed_and_convex_the_torus_is_not() {
         .iter()
         .map(|v| Face::new(v, Rgb565::new(31, 0, 0)))
         .collect();
-    assert!(!closed_convex(&Mesh {
-        vertices: cube.vertices,
-        faces: &faces
-    }));
+    assert!(!closed_convex(&Mesh::new(cube.vertices, &faces)));
     // Every face turned over: closed, but inside out (faces point inwards).
     let inside_out: Vec<Vec<u16>> = cube
         .faces
@@ -80,14 +74,8 @@ fn the_cube_is_closed_and_convex_the_torus_is_not() {
         .iter()
         .map(|v| Face::new(v, Rgb565::new(31, 0, 0)))
         .collect();
-    assert!(!closed_convex(&Mesh {
-        vertices: cube.vertices,
-        faces: &faces
-    }));
-    assert!(!closed_convex(&Mesh::<Q16_16> {
-        vertices: &[],
-        faces: &[]
-    }));
+    assert!(!closed_convex(&Mesh::new(cube.vertices, &faces)));
+    assert!(!closed_convex(&Mesh::<Q16_16>::new(&[], &[])));
 }
 
 fn cull_only_equals_scanline<N: zrow_scenes::Format>() {

@@ -137,10 +137,7 @@ impl Polys {
             })
             .collect();
         f(&ScreenScene {
-            mesh: Mesh {
-                vertices: &verts,
-                faces: &faces,
-            },
+            mesh: Mesh::new(&verts, &faces),
         })
     }
 }
@@ -317,7 +314,7 @@ pub fn render_model<N: Scalar>(
     camera: Camera<N>,
     cfg: &Config,
 ) -> Capture<N> {
-    let mesh = Mesh { vertices, faces };
+    let mesh = Mesh::new(vertices, faces);
     let objects = [Object {
         mesh: &mesh,
         transform: Affine::identity(),
