@@ -32,6 +32,7 @@
 #![deny(missing_docs)]
 
 pub mod cli;
+pub mod convert;
 pub mod demo;
 pub mod error;
 pub mod model;
