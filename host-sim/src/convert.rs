@@ -110,7 +110,11 @@ pub struct ConvertOptions {
     pub directions: usize,
     /// Roll angles per direction, evenly spaced over a turn (at least 1).
     pub rolls: usize,
-    /// Uniformly random extra orientations measured to check the sampling.
+    /// Worst sampled views the local search starts from, per capacity.
+    pub refine_starts: usize,
+    /// Steps of each local search.
+    pub refine_steps: usize,
+    /// Uniformly random extra orientations measured to check the capacities.
     pub check_views: usize,
     /// Seed of the random orientations.
     pub seed: u64,
@@ -118,7 +122,8 @@ pub struct ConvertOptions {
 
 impl Default for ConvertOptions {
     /// Q16.16, 240 × 240, distance 3 (the simulator's camera), not strict, name `model`,
-    /// 256 directions × 8 rolls, 10,000 check views, seed 1.
+    /// 256 directions × 8 rolls, local search from the 8 worst views × 150 steps per
+    /// capacity, 10,000 check views, seed 1.
     fn default() -> Self {
         ConvertOptions {
             format: Format::Q16_16,
@@ -129,6 +134,8 @@ impl Default for ConvertOptions {
             name: "model".into(),
             directions: 256,
             rolls: 8,
+            refine_starts: 8,
+            refine_steps: 150,
             check_views: 10_000,
             seed: 1,
         }
@@ -199,13 +206,18 @@ pub struct QuantError {
 pub struct ViewStats {
     /// Sampled views: `(directions + 6) × rolls`.
     pub sampled: usize,
+    /// Views measured by the local search.
+    pub refined: usize,
     /// Random check views.
     pub checked: usize,
     /// Maxima over the sampled views.
     pub sampled_max: Requirements,
+    /// Maxima over the sampled views and the local search (the capacities before the margin).
+    pub refined_max: Requirements,
     /// Maxima over the random views.
     pub checked_max: Requirements,
-    /// Random views that needed more than the sampled maxima in some capacity.
+    /// Random views that needed more than the capacities (refined maxima plus the margin) in
+    /// some capacity; each raised the capacities to what it needed.
     pub checked_exceeding: usize,
 }
 
@@ -329,9 +341,9 @@ impl fmt::Display for Report {
         let v = &self.views;
         writeln!(
             f,
-            "  views at {w}x{h}, distance {}: {} sampled, {} random checks ({} exceeded the \
-             sampled maxima)",
-            self.distance, v.sampled, v.checked, v.checked_exceeding
+            "  views at {w}x{h}, distance {}: {} sampled, {} by local search from the worst, {} \
+             random checks ({} needed more than the capacities)",
+            self.distance, v.sampled, v.refined, v.checked, v.checked_exceeding
         )?;
         let row = |name: &str, r: &Requirements| {
             format!(
@@ -340,11 +352,17 @@ impl fmt::Display for Report {
             )
         };
         writeln!(f, "{}", row("sampled max", &v.sampled_max))?;
+        writeln!(f, "{}", row("searched max", &v.refined_max))?;
         writeln!(f, "{}", row("random max", &v.checked_max))?;
         writeln!(
             f,
-            "{} (max of both + {MARGIN_PERCENT}%, at least 1)",
-            row("emitted", &self.capacities)
+            "{} (searched max + {MARGIN_PERCENT}%, at least 1{})",
+            row("emitted", &self.capacities),
+            if v.checked_exceeding > 0 {
+                ", raised to the random max"
+            } else {
+                ""
+            }
         )?;
         let d = &self.depth;
         writeln!(
@@ -720,13 +738,12 @@ pub fn convert_model(model: &LoadedModel, opts: &ConvertOptions) -> Result<Conve
         Format::Q16_16 => measure_all::<Q16_16>(file, &vertices, &faces, opts)?,
         Format::F32 => measure_all::<f32>(file, &vertices, &faces, opts)?,
     };
-    let both = views.sampled_max.max(views.checked_max);
-    let margin = |x: u32| x + (x * MARGIN_PERCENT).div_ceil(100).max(1);
+    // The check views never lower the capacities; if one needed more, it raises them (and
+    // the report says so).
+    let capacities = with_margin(&views.refined_max).max(views.checked_max);
     let capacities = Requirements {
-        polygons: margin(both.polygons),
-        edges: margin(both.edges),
-        active_polygons: margin(both.active_polygons),
         width: opts.width,
+        ..capacities
     };
     let radius = vertices.iter().map(|&v| dot(v, v).sqrt()).fold(0.0, f64::max);
     let d = f64::from(opts.distance);
@@ -989,18 +1006,62 @@ pub fn sampled_rotations(directions: usize, rolls: usize) -> Vec<[[f64; 3]; 3]> 
     out
 }
 
+/// xorshift64: uniforms in [0, 1).
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f64 {
+        let s = &mut self.0;
+        *s ^= *s << 13;
+        *s ^= *s >> 7;
+        *s ^= *s << 17;
+        (*s >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 /// `count` uniformly random rotations (xorshift64 from `seed`).
 pub fn random_rotations(count: usize, seed: u64) -> Vec<[[f64; 3]; 3]> {
-    let mut s = seed.max(1);
-    let mut next = move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = Rng(seed.max(1));
     (0..count)
-        .map(|_| random_rotation([next(), next(), next()]))
+        .map(|_| random_rotation([rng.next(), rng.next(), rng.next()]))
         .collect()
+}
+
+/// A rotation by `angle` radians about a uniformly random axis (Rodrigues).
+fn small_rotation(rng: &mut Rng, angle: f64) -> Rot {
+    let z = 2.0 * rng.next() - 1.0;
+    let phi = std::f64::consts::TAU * rng.next();
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let [x, y, z] = [r * phi.cos(), r * phi.sin(), z];
+    let (s, c) = angle.sin_cos();
+    let t = 1.0 - c;
+    [
+        [t * x * x + c, t * x * y - s * z, t * x * z + s * y],
+        [t * x * y + s * z, t * y * y + c, t * y * z - s * x],
+        [t * x * z - s * y, t * y * z + s * x, t * z * z + c],
+    ]
+}
+
+/// `a · b` (b first, then a).
+fn compose(a: &Rot, b: &Rot) -> Rot {
+    let mut out = [[0.0; 3]; 3];
+    for (i, row) in out.iter_mut().enumerate() {
+        for (j, v) in row.iter_mut().enumerate() {
+            *v = (0..3).map(|k| a[i][k] * b[k][j]).sum();
+        }
+    }
+    out
+}
+
+/// A measured capacity plus [`MARGIN_PERCENT`], rounded up, at least 1.
+pub fn with_margin(req: &Requirements) -> Requirements {
+    let m = |x: u32| x + (x * MARGIN_PERCENT).div_ceil(100).max(1);
+    Requirements {
+        polygons: m(req.polygons),
+        edges: m(req.edges),
+        active_polygons: m(req.active_polygons),
+        width: req.width,
+    }
 }
 
 /// What `mesh` needs seen in orientation `rot` by the converter's camera.
@@ -1081,31 +1142,57 @@ fn measure_all<N: Scalar>(
     let mut rows = Vec::new();
     let mut depth = (f64::INFINITY, f64::NEG_INFINITY);
     let d = f64::from(opts.distance);
-    let mut track = |rot: &Rot| {
+    let mut measure = |rot: &Rot| -> Result<Requirements, SimError> {
         for v in vertices {
             let w = d - dot(rot[2], *v);
             depth = (depth.0.min(w), depth.1.max(w));
         }
+        measure_view(&mesh, rot, opts, &mut rows).map_err(blame)
     };
     let mut stats = ViewStats::default();
+    let mut seen: Vec<(Requirements, Rot)> = Vec::new();
     for rot in sampled_rotations(opts.directions, opts.rolls) {
-        let req = measure_view(&mesh, &rot, opts, &mut rows).map_err(blame)?;
+        let req = measure(&rot)?;
         stats.sampled_max = stats.sampled_max.max(req);
         stats.sampled += 1;
-        track(&rot);
+        seen.push((req, rot));
     }
+    // Local search from the worst sampled views, one capacity at a time: turn the model by a
+    // random small rotation, keep the new orientation when it needs at least as much.
+    let mut rng = Rng(opts.seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
+    stats.refined_max = stats.sampled_max;
+    let keys: [fn(&Requirements) -> u32; 3] =
+        [|r| r.polygons, |r| r.edges, |r| r.active_polygons];
+    for key in keys {
+        seen.sort_by_key(|(r, _)| std::cmp::Reverse(key(r)));
+        let starts: Vec<(Requirements, Rot)> =
+            seen.iter().take(opts.refine_starts).copied().collect();
+        for (mut best, mut rot) in starts {
+            for step in 0..opts.refine_steps {
+                // 4° down to 0.04°.
+                let t = step as f64 / opts.refine_steps.max(1) as f64;
+                let angle = (4.0f64 * 0.01f64.powf(t)).to_radians();
+                let turned = compose(&small_rotation(&mut rng, angle), &rot);
+                let req = measure(&turned)?;
+                stats.refined += 1;
+                stats.refined_max = stats.refined_max.max(req);
+                if key(&req) >= key(&best) {
+                    (best, rot) = (req, turned);
+                }
+            }
+        }
+    }
+    let capacities = with_margin(&stats.refined_max);
     for rot in random_rotations(opts.check_views, opts.seed) {
-        let req = measure_view(&mesh, &rot, opts, &mut rows).map_err(blame)?;
-        let s = &stats.sampled_max;
-        if req.polygons > s.polygons
-            || req.edges > s.edges
-            || req.active_polygons > s.active_polygons
+        let req = measure(&rot)?;
+        if req.polygons > capacities.polygons
+            || req.edges > capacities.edges
+            || req.active_polygons > capacities.active_polygons
         {
             stats.checked_exceeding += 1;
         }
         stats.checked_max = stats.checked_max.max(req);
         stats.checked += 1;
-        track(&rot);
     }
     Ok((stats, depth))
 }
