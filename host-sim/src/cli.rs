@@ -357,7 +357,13 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
             .unwrap_or_default();
         let stem: String = stem
             .chars()
-            .map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' })
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '-' {
+                    c
+                } else {
+                    '_'
+                }
+            })
             .collect();
         let options = crate::convert::ConvertOptions {
             format,
@@ -365,7 +371,11 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
             height,
             distance: view.distance,
             strict,
-            name: name_flag.unwrap_or(if stem.is_empty() { defaults.name.clone() } else { stem }),
+            name: name_flag.unwrap_or(if stem.is_empty() {
+                defaults.name.clone()
+            } else {
+                stem
+            }),
             check_views: checks.unwrap_or(defaults.check_views),
             ..defaults
         };

@@ -154,10 +154,12 @@ pub enum IndexType {
 impl IndexType {
     /// The narrowest type for `vertices` vertices (`None`: more than 65,536).
     pub fn for_vertices(vertices: usize) -> Option<Self> {
-        match vertices {
-            0..=MAX_U8_VERTICES => Some(IndexType::U8),
-            0..=MAX_VERTICES => Some(IndexType::U16),
-            _ => None,
+        if vertices <= MAX_U8_VERTICES {
+            Some(IndexType::U8)
+        } else if vertices <= MAX_VERTICES {
+            Some(IndexType::U16)
+        } else {
+            None
         }
     }
     /// `u8` or `u16`.
@@ -411,6 +413,9 @@ pub struct Converted {
     pub index: IndexType,
     /// The emitted positions, exactly (every Q16.16 and f32 value is an `f64`).
     pub vertices: Vec<[f64; 3]>,
+    /// For each emitted vertex, its index in the loaded model's `positions` (vertices are
+    /// renumbered in order of first use; unused ones are dropped).
+    pub source: Vec<usize>,
     /// The faces.
     pub faces: Vec<ConvertedFace>,
     /// The emitted normals, exactly, one per face.
@@ -481,8 +486,7 @@ pub fn write_for_build(
     };
     println!("cargo:rerun-if-changed={}", path.display());
     let mtl = path.with_extension("mtl");
-    if crate::model::ModelFormat::of(path) == Some(crate::model::ModelFormat::Obj) && mtl.exists()
-    {
+    if crate::model::ModelFormat::of(path) == Some(crate::model::ModelFormat::Obj) && mtl.exists() {
         println!("cargo:rerun-if-changed={}", mtl.display());
     }
     let converted = convert(path, &opts)?;
@@ -616,8 +620,6 @@ pub fn convert_model(model: &LoadedModel, opts: &ConvertOptions) -> Result<Conve
 
     // 2. Planarity: non-planar faces become fans of triangles.
     let mut faces: Vec<ConvertedFace> = Vec::with_capacity(model.faces.len());
-    let mut worst = (0.0f64, None);
-    let mut non_planar = 0usize;
     for face in &model.faces {
         let points: Vec<P3> = face
             .indices
@@ -643,10 +645,6 @@ pub fn convert_model(model: &LoadedModel, opts: &ConvertOptions) -> Result<Conve
                 place(file, face.origin),
                 points.len() - 2
             ));
-            non_planar += 1;
-            if off > worst.0 {
-                worst = (off, face.origin);
-            }
             for w in 1..face.indices.len() - 1 {
                 faces.push(ConvertedFace {
                     indices: vec![face.indices[0], face.indices[w], face.indices[w + 1]],
@@ -662,7 +660,6 @@ pub fn convert_model(model: &LoadedModel, opts: &ConvertOptions) -> Result<Conve
             });
         }
     }
-    let _ = non_planar;
 
     // 3. Unused vertices dropped.
     let mut remap = vec![u32::MAX; pos.len()];
@@ -745,9 +742,15 @@ pub fn convert_model(model: &LoadedModel, opts: &ConvertOptions) -> Result<Conve
         width: opts.width,
         ..capacities
     };
-    let radius = vertices.iter().map(|&v| dot(v, v).sqrt()).fold(0.0, f64::max);
+    let radius = vertices
+        .iter()
+        .map(|&v| dot(v, v).sqrt())
+        .fold(0.0, f64::max);
     let d = f64::from(opts.distance);
-    let bound = ((d - radius).max(f64::from(NEAR)), (d + radius).min(f64::from(FAR)));
+    let bound = (
+        (d - radius).max(f64::from(NEAR)),
+        (d + radius).min(f64::from(FAR)),
+    );
     let zdepth = |w: f64| {
         let (n, f) = (f64::from(NEAR), f64::from(FAR));
         f64::from(zrow::geometry::DEPTH_RANGE) * (1.0 - n / w) * f / (f - n)
@@ -794,6 +797,7 @@ pub fn convert_model(model: &LoadedModel, opts: &ConvertOptions) -> Result<Conve
         format: opts.format,
         index,
         vertices,
+        source: kept,
         faces,
         normals,
         capacities,
@@ -1161,8 +1165,7 @@ fn measure_all<N: Scalar>(
     // random small rotation, keep the new orientation when it needs at least as much.
     let mut rng = Rng(opts.seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
     stats.refined_max = stats.sampled_max;
-    let keys: [fn(&Requirements) -> u32; 3] =
-        [|r| r.polygons, |r| r.edges, |r| r.active_polygons];
+    let keys: [fn(&Requirements) -> u32; 3] = [|r| r.polygons, |r| r.edges, |r| r.active_polygons];
     for key in keys {
         seen.sort_by_key(|(r, _)| std::cmp::Reverse(key(r)));
         let starts: Vec<(Requirements, Rot)> =
@@ -1388,14 +1391,21 @@ mod tests {
         assert_eq!(planarity(&square), 0.0);
         let mut bent = square;
         bent[2][2] = 0.4; // alternate vertices ±0.1 from the best-fit plane
-        assert!((planarity(&bent) - 0.1).abs() < 0.01, "{}", planarity(&bent));
+        assert!(
+            (planarity(&bent) - 0.1).abs() < 0.01,
+            "{}",
+            planarity(&bent)
+        );
     }
 
     #[test]
     fn q16_16_rounds_to_nearest() {
         assert_eq!(quantise(Format::Q16_16, 0.5 / 65536.0 * 0.99), 0.0);
         assert_eq!(quantise(Format::Q16_16, 1.01 / 65536.0), 1.0 / 65536.0);
-        assert_eq!(literal(Format::Q16_16, -1.0), "zrow::Q16_16::from_bits(-65536)");
+        assert_eq!(
+            literal(Format::Q16_16, -1.0),
+            "zrow::Q16_16::from_bits(-65536)"
+        );
         assert_eq!(literal(Format::F32, 0.1f32 as f64), "0.1f32");
     }
 }
