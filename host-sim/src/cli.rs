@@ -531,6 +531,58 @@ mod tests {
     }
 
     #[test]
+    fn convert_flags_and_defaults() {
+        let a = [
+            "convert",
+            "--model",
+            "dir/my model.obj",
+            "--out=m.rs",
+            "--strict",
+            "--format",
+            "f32",
+            "--distance",
+            "4",
+        ];
+        let Command::Render(RenderArgs::Convert(got)) = parse(&a).unwrap() else {
+            panic!()
+        };
+        assert_eq!(got.model, PathBuf::from("dir/my model.obj"));
+        assert_eq!(got.out, PathBuf::from("m.rs"));
+        let o = &got.options;
+        assert_eq!(
+            (o.name.as_str(), o.strict, o.format),
+            ("my_model", true, Format::F32)
+        );
+        assert_eq!(
+            (o.width, o.height, o.distance, o.check_views),
+            (240, 240, 4.0, 10_000)
+        );
+        let b = [
+            "convert", "--model", "a.stl", "--out", "a.rs", "--name", "ico",
+        ];
+        let Command::Render(RenderArgs::Convert(got)) = parse(&b).unwrap() else {
+            panic!()
+        };
+        assert_eq!(
+            (got.options.name.as_str(), got.options.strict),
+            ("ico", false)
+        );
+        for (args, want) in [
+            (&["convert", "--out", "a.rs"][..], "convert needs --model"),
+            (&["convert", "--model", "a.obj"][..], "convert needs --out"),
+            (
+                &["convert", "--strict", "--strict"][..],
+                "--strict given twice",
+            ),
+            (&["convert", "--checks", "many"][..], "bad --checks `many`"),
+            (&["convert", "--yaw", "3"][..], "unknown argument `--yaw`"),
+        ] {
+            let e = parse(args).unwrap_err().to_string();
+            assert!(e.contains(want), "{args:?}: {e}");
+        }
+    }
+
+    #[test]
     fn usage_errors_say_what_is_accepted() {
         let cases: &[(&[&str], &str)] = &[
             (&[], "missing command"),
