@@ -160,10 +160,7 @@ impl LoadedModel {
                 alpha: 255,
             })
             .collect();
-        Ok(f(&Mesh {
-            vertices: &vertices,
-            faces: &faces,
-        }))
+        Ok(f(&Mesh::new(&vertices, &faces)))
     }
 
     /// Where face number `face` (0-based, as zrow's errors count) came from.

@@ -249,7 +249,7 @@ fn faces(scene: &OffScene) -> Vec<Face<'_>> {
 
 fn screen_scene<'a, N>(vertices: &'a [zrow::Vec3<N>], faces: &'a [Face<'a>]) -> ScreenScene<'a, N> {
     ScreenScene {
-        mesh: Mesh { vertices, faces },
+        mesh: Mesh::new(vertices, faces),
     }
 }
 

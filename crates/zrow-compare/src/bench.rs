@@ -222,10 +222,7 @@ pub fn with_screen<T>(s: &Surfaces, f: impl FnOnce(&ScreenScene<'_, Q16_16>) -> 
         .iter()
         .map(|(idx, (r, g, b))| Face::new(idx, Rgb565::new(*r, *g, *b)))
         .collect();
-    let mesh = Mesh {
-        vertices: &vertices,
-        faces: &faces,
-    };
+    let mesh = Mesh::new(&vertices, &faces);
     f(&ScreenScene { mesh })
 }
 

@@ -133,7 +133,7 @@ pub fn mesh<N: Format>(name: &str) -> Option<Mesh<'static, N>> {
         "foley2500" => (N::foley2500(), &meshes::FOLEY2500_FACES),
         _ => return None,
     };
-    Some(Mesh { vertices, faces })
+    Some(Mesh::new(vertices, faces))
 }
 
 /// The model scenes' camera.
@@ -183,14 +183,8 @@ fn interlocked<N: Format, R>(
     angle: f32,
     f: impl FnOnce(&dyn Scene<N>, &Config, usize) -> R,
 ) -> Option<R> {
-    let ring = Mesh {
-        vertices: N::ring(),
-        faces: &meshes::RING_FACES,
-    };
-    let cube = Mesh {
-        vertices: N::cube(),
-        faces: &meshes::CUBE_FACES,
-    };
+    let ring = Mesh::new(N::ring(), &meshes::RING_FACES);
+    let cube = Mesh::new(N::cube(), &meshes::CUBE_FACES);
     // Ring A lies flat, ring B stands up through A's hole; the cube sits where they cross.
     let turn = |yaw: f32, pitch: f32, t: [f32; 3]| Affine::rotate_yx_translate(yaw, pitch, t);
     let spin = Affine::rotate_yx_translate(angle, 0.3, [0.0; 3])?;

@@ -23,8 +23,8 @@
 //! ) -> Result<(), RenderError<Error<SPI::Error, DC::Error>>> {
 //!     let q = |x, y, z| Vec3::<Q16_16>::from_f32([x, y, z]).unwrap();
 //!     let vertices = [q(20.0, 20.0, 1.0), q(220.0, 60.0, 1.0), q(60.0, 220.0, 1.0)];
-//!     let faces = [Face { indices: &[0, 1, 2], color: Rgb565::GREEN, alpha: 255 }];
-//!     let scene = ScreenScene { mesh: Mesh { vertices: &vertices, faces: &faces } };
+//!     let faces = [Face { indices: &[0u16, 1, 2], color: Rgb565::GREEN, alpha: 255 }];
+//!     let scene = ScreenScene { mesh: Mesh::new(&vertices, &faces) };
 //!
 //!     let mut panel = St7789Rows::<_, _, B>::new(spi, dc, WINDOW).unwrap();
 //!     panel.init(delay).map_err(RenderError::Sink)?;

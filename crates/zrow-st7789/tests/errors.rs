@@ -144,15 +144,12 @@ fn renderer_reports_the_sink_error() {
     let q = |x, y| Vec3::<Q16_16>::from_f32([x, y, 1.0]).unwrap();
     let vertices = [q(0.0, 0.0), q(30.0, 0.0), q(0.0, 30.0)];
     let faces = [Face {
-        indices: &[0, 1, 2],
+        indices: &[0u16, 1, 2],
         color: Rgb565::BLUE,
         alpha: 255,
     }];
     let scene = ScreenScene {
-        mesh: Mesh {
-            vertices: &vertices,
-            faces: &faces,
-        },
+        mesh: Mesh::new(&vertices, &faces),
     };
     let mut r = Scanline::<Q16_16, 64, 4, 8, 4>::new();
     let bus = MockBus::new();

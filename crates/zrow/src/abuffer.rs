@@ -65,7 +65,7 @@
 //!     Face::new(&[0, 1, 2, 3], Rgb565::RED),
 //!     Face::translucent(&[4, 5, 6, 7], Rgb565::BLUE, 128),
 //! ];
-//! let scene = ScreenScene { mesh: Mesh { vertices: &v, faces: &faces } };
+//! let scene = ScreenScene { mesh: Mesh::new(&v, &faces) };
 //! // 8-pixel rows, 2 polygons, 8 edges, 8 fragments in a row.
 //! let mut r = ABuffer::<f32, 8, 2, 8, 8>::new();
 //! let mut pixels = [Rgb565::BLACK; 64];

@@ -71,6 +71,14 @@ pub enum Error {
         /// Face number.
         face: u32,
     },
+    /// A mesh has `normals` precomputed normals for its `faces` faces: give exactly one per
+    /// face, or none (then model mode computes them).
+    Normals {
+        /// Faces in the mesh.
+        faces: u32,
+        /// Normals in the mesh.
+        normals: u32,
+    },
     /// The configuration is impossible: size 0 or above `MAX_VIEWPORT`, or sub-pixel bits
     /// outside 1..=8.
     BadConfig,
@@ -117,6 +125,10 @@ impl core::fmt::Display for Error {
                 "face {face}: coordinate not finite or outside the number format"
             ),
             Error::NotConvex { face } => write!(f, "face {face}: not convex"),
+            Error::Normals { faces, normals } => write!(
+                f,
+                "mesh has {normals} normals for {faces} faces: give one per face or none"
+            ),
             Error::BadConfig => write!(
                 f,
                 "bad configuration: size must be 1..=2048 and sub-pixel bits 1..=8"

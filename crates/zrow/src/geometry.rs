@@ -2,7 +2,12 @@
 //!
 //! - **Model mode** ([`ModelScene`]): vertices go model → view by one affine transform per
 //!   object; the seeds' normal-versus-view test drops back faces ([`crate::backface`]); the face
-//!   is flat (Lambert) shaded from the directional light; the polygon is clipped in clip space
+//!   is flat (Lambert) shaded from the directional light. The face normal is the cross product
+//!   of the face's first two view-space edges, or, for a mesh with precomputed
+//!   [`normals`](crate::scene::Mesh::normals), the given normal taken to view space by the
+//!   cofactor matrix of the object's transform (right for any scale or mirror). Depth and
+//!   coverage come from the vertices either way; only shading, and the cull decision for a
+//!   face seen within rounding of edge-on, can differ; the polygon is clipped in clip space
 //!   against the near and far planes (so only w ≥ near > 0 is ever divided by) and a guard band
 //!   ([`GUARD_BAND`](crate::raster::GUARD_BAND) pixels round the viewport), then divided and snapped. Depth is
 //!   `DEPTH_RANGE · (1 − near/w) · far/(far − near)` under perspective (affine in 1/w, hence
@@ -17,12 +22,12 @@
 
 use crate::backface::is_back_face;
 use crate::error::Error;
-use crate::math::Vec3;
+use crate::math::{Affine, Vec3};
 use crate::number::Scalar;
 use crate::raster::{
     Config, Cull, RasterPolygon, RasterVertex, GUARD_BAND, MAX_FACE_VERTICES, MAX_POLYGON_VERTICES,
 };
-use crate::scene::{Face, Mesh, ModelScene, Projection, Scene, ScreenScene};
+use crate::scene::{Face, Mesh, MeshIndex, ModelScene, Projection, Scene, ScreenScene};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use heapless::Vec;
 
@@ -61,7 +66,11 @@ fn clip_plane<V: Copy>(
 }
 
 /// Gathers a face's vertices, checking its size and indices.
-fn gather<N: Scalar>(mesh: &Mesh<'_, N>, face: &Face<'_>, no: u32) -> Result<Poly<Vec3<N>>, Error> {
+fn gather<N: Scalar, I: MeshIndex>(
+    mesh: &Mesh<'_, N, I>,
+    face: &Face<'_, I>,
+    no: u32,
+) -> Result<Poly<Vec3<N>>, Error> {
     if face.indices.len() < 3 {
         return Err(Error::TooFewVertices { face: no });
     }
@@ -70,13 +79,10 @@ fn gather<N: Scalar>(mesh: &Mesh<'_, N>, face: &Face<'_>, no: u32) -> Result<Pol
     }
     let mut out = Vec::new();
     for &i in face.indices {
-        let v = *mesh
-            .vertices
-            .get(i as usize)
-            .ok_or(Error::IndexOutOfRange {
-                face: no,
-                index: i as u32,
-            })?;
+        let v = *mesh.vertices.get(i.index()).ok_or(Error::IndexOutOfRange {
+            face: no,
+            index: i.index() as u32,
+        })?;
         if !(v.x.is_finite() && v.y.is_finite() && v.z.is_finite()) {
             return Err(Error::NonFinite { face: no });
         }
@@ -145,12 +151,13 @@ fn clip_guard_band<N: Scalar>(
     clip_plane(poly, |v| v.y <= hy, at_y(hy), face)
 }
 
-impl<N: Scalar> Scene<N> for ScreenScene<'_, N> {
+impl<N: Scalar, I: MeshIndex> Scene<N> for ScreenScene<'_, N, I> {
     fn polygons(
         &self,
         cfg: &Config,
         f: &mut dyn FnMut(&RasterPolygon<N>) -> Result<(), Error>,
     ) -> Result<(), Error> {
+        self.mesh.check_normals()?;
         for (no, face) in self.mesh.faces.iter().enumerate() {
             let no = no as u32;
             let mut poly = gather(&self.mesh, face, no)?;
@@ -170,6 +177,39 @@ pub fn shade<N: Scalar>(c: Rgb565, intensity: N) -> Rgb565 {
     Rgb565::new(s(c.r()), s(c.g()), s(c.b()))
 }
 
+/// The matrix that takes a model-space normal to view space for the transform `mv`: the
+/// cofactor matrix of `mv`'s linear part M (`cof(M)·(a × b) = Ma × Mb`, so the normal stays
+/// perpendicular to the face and keeps its side under any scale or mirror), computed from M
+/// divided by its largest entry magnitude so no product overflows (a positive scale changes no
+/// direction). `None` if M is singular.
+fn normal_matrix<N: Scalar>(mv: &Affine<N>) -> Option<Affine<N>> {
+    let abs = |v: N| if v < N::ZERO { v.neg() } else { v };
+    let mut big = N::ZERO;
+    for row in &mv.m {
+        for &e in &row[..3] {
+            if abs(e) > big {
+                big = abs(e);
+            }
+        }
+    }
+    let mut m = [[N::ZERO; 3]; 3];
+    for (dst, src) in m.iter_mut().zip(&mv.m) {
+        for (d, &e) in dst.iter_mut().zip(&src[..3]) {
+            *d = e.div(big)?;
+        }
+    }
+    let mut out = Affine::identity();
+    for (r, row) in out.m.iter_mut().enumerate() {
+        for (c, e) in row.iter_mut().take(3).enumerate() {
+            // Cofactor (r, c): the 2×2 minor of the rows and columns other than r and c,
+            // taken cyclically so the sign comes out right. Every index is `% 3`, inside `m`.
+            let (r1, r2, c1, c2) = ((r + 1) % 3, (r + 2) % 3, (c + 1) % 3, (c + 2) % 3);
+            *e = m[r1][c1].mul(m[r2][c2]).sub(m[r1][c2].mul(m[r2][c1]));
+        }
+    }
+    Some(out)
+}
+
 /// Picks one coordinate of a clip-space vertex.
 type Coord<N> = fn(&ClipV<N>) -> N;
 
@@ -181,7 +221,7 @@ struct ClipV<N> {
     w: N,
 }
 
-impl<N: Scalar> Scene<N> for ModelScene<'_, N> {
+impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
     fn polygons(
         &self,
         cfg: &Config,
@@ -223,22 +263,34 @@ impl<N: Scalar> Scene<N> for ModelScene<'_, N> {
             Some(Vec3::new(l.x.div(len)?, l.y.div(len)?, l.z.div(len)?))
         });
         let minus_one = N::ONE.neg();
+        for obj in self.objects {
+            obj.mesh.check_normals()?;
+        }
         let mut no = 0u32;
         for obj in self.objects {
             let mv = self.camera.view.then_after(&obj.transform);
-            for face in obj.mesh.faces {
+            let to_view = if obj.mesh.normals.is_empty() {
+                None // not needed: every normal comes from the cross product
+            } else {
+                normal_matrix(&mv)
+            };
+            for (k, face) in obj.mesh.faces.iter().enumerate() {
                 let this = no;
                 no += 1;
                 let mut poly = gather(obj.mesh, face, this)?;
                 for v in poly.iter_mut() {
                     *v = mv.apply(*v);
                 }
-                let Some(normal) = poly[1]
-                    .minus(poly[0])
-                    .cross(poly[2].minus(poly[0]))
-                    .unit_max()
-                else {
-                    continue; // degenerate face: zero area
+                let normal = match obj.mesh.normals.get(k) {
+                    // Checked above: `normals` is empty or has one entry per face.
+                    Some(&n) => to_view.and_then(|m| m.apply_dir(n).unit_max()),
+                    None => poly[1]
+                        .minus(poly[0])
+                        .cross(poly[2].minus(poly[0]))
+                        .unit_max(),
+                };
+                let Some(normal) = normal else {
+                    continue; // degenerate face: zero area (or a zero normal)
                 };
                 if cfg.cull == Cull::Back {
                     let view = if perspective {

@@ -17,10 +17,10 @@
 //!     q(2.0, 0.0, 6.0), q(6.0, 0.0, 6.0), q(4.0, 4.0, 0.0), // s2
 //! ];
 //! let faces = [
-//!     Face { indices: &[0, 1, 2], color: Rgb565::RED, alpha: 255 },
+//!     Face { indices: &[0u16, 1, 2], color: Rgb565::RED, alpha: 255 },
 //!     Face { indices: &[3, 4, 5], color: Rgb565::GREEN, alpha: 255 },
 //! ];
-//! let scene = ScreenScene { mesh: Mesh { vertices: &vertices, faces: &faces } };
+//! let scene = ScreenScene { mesh: Mesh::new(&vertices, &faces) };
 //!
 //! // Capacities: 8-pixel rows, 2 polygons, 8 edges, 2 polygons active in a row.
 //! let mut renderer = Scanline::<Q16_16, 8, 2, 8, 2>::new();
@@ -86,3 +86,35 @@ pub use scanline::Scanline;
 pub use scene::{Camera, Face, Light, Mesh, ModelScene, Object, Projection, Scene, ScreenScene};
 pub use sink::{DrawTargetSink, FrameBuffer, Row, RowSink};
 pub use zbuffer::ZBuffer;
+
+/// Includes a mesh a build script generated, so a converted model becomes `static` data in
+/// flash: `include_mesh!("name")` expands to
+/// `include!(concat!(env!("OUT_DIR"), "/", "name", ".rs"))`.
+///
+/// The build script (a model converter run from `build.rs`) writes `$OUT_DIR/name.rs`: Rust
+/// items such as a vertex array, a face array with `u8` or `u16` indices ([`scene::MeshIndex`]),
+/// optionally one normal per face, and a `static` [`Mesh`] built with the `const fn`s
+/// [`Mesh::new`] or [`Mesh::with_normals`]. The generated code names everything by full path
+/// (`zrow::Mesh`, `zrow::Q16_16::from_bits`, ...), since it lands wherever the macro is
+/// invoked. Invoke it at module level (the file holds items); the items keep the names the
+/// script gave them.
+///
+/// The example is not compiled as a doctest: `OUT_DIR` exists only for a package with a build
+/// script, which a doctest is not.
+///
+/// ```ignore
+/// // build.rs wrote $OUT_DIR/teapot.rs, holding e.g.
+/// //   pub static TEAPOT_VERTICES: [zrow::Vec3<zrow::Q16_16>; 26] = [..];
+/// //   pub static TEAPOT_FACES: [zrow::Face<'static, u8>; 48] = [..];
+/// //   pub static TEAPOT: zrow::Mesh<'static, zrow::Q16_16, u8> =
+/// //       zrow::Mesh::new(&TEAPOT_VERTICES, &TEAPOT_FACES);
+/// zrow::include_mesh!("teapot");
+///
+/// let object = zrow::Object { mesh: &TEAPOT, transform: zrow::Affine::identity() };
+/// ```
+#[macro_export]
+macro_rules! include_mesh {
+    ($name:literal) => {
+        include!(concat!(env!("OUT_DIR"), "/", $name, ".rs"));
+    };
+}

@@ -349,10 +349,7 @@ mod tests {
             Face::new(&[5, 6, 7], Rgb565::BLUE),
         ];
         let scene = ScreenScene {
-            mesh: Mesh {
-                vertices: &v,
-                faces: &faces,
-            },
+            mesh: Mesh::new(&v, &faces),
         };
         let cfg = Config::screen(20, 20);
         let mut t = PolygonTable::<f32, 4, 16>::new();

@@ -45,8 +45,8 @@ impl Requirements {
 /// use zrow::{requirements, Config, Face, Mesh, ScreenScene, Vec3};
 /// use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 /// let v = [Vec3::new(1.0f32, 1.0, 1.0), Vec3::new(9.0, 1.0, 1.0), Vec3::new(1.0, 9.0, 1.0)];
-/// let faces = [Face { indices: &[0, 1, 2], color: Rgb565::RED, alpha: 255 }];
-/// let scene = ScreenScene { mesh: Mesh { vertices: &v, faces: &faces } };
+/// let faces = [Face { indices: &[0u16, 1, 2], color: Rgb565::RED, alpha: 255 }];
+/// let scene = ScreenScene { mesh: Mesh::new(&v, &faces) };
 /// let mut rows = [0u32; 17];
 /// let req = requirements(&scene, &Config::screen(16, 16), &mut rows).unwrap();
 /// assert_eq!((req.polygons, req.edges, req.active_polygons), (1, 2, 1));

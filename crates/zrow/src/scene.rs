@@ -7,12 +7,46 @@ use crate::number::Scalar;
 use crate::raster::{Config, RasterPolygon};
 use embedded_graphics_core::pixelcolor::Rgb565;
 
-/// A face: a convex planar polygon given by vertex indices, and its colour.
+mod sealed {
+    /// Keeps [`super::MeshIndex`] implemented for `u8` and `u16` only.
+    pub trait Sealed {}
+    impl Sealed for u8 {}
+    impl Sealed for u16 {}
+}
+
+/// The integer type of a mesh's vertex indices: `u16` (the default, up to 65,536 vertices) or
+/// `u8` (up to 256 vertices, half the flash per index). A model converter picks the narrowest
+/// one that fits the mesh. Sealed: only `u8` and `u16` implement it.
+pub trait MeshIndex: Copy + core::fmt::Debug + PartialEq + 'static + sealed::Sealed {
+    /// The largest vertex count the type can address (256 for `u8`, 65,536 for `u16`).
+    const MAX: usize;
+    /// The index as a `usize`, for looking the vertex up.
+    fn index(self) -> usize;
+}
+
+impl MeshIndex for u8 {
+    const MAX: usize = 1 << 8;
+    #[inline]
+    fn index(self) -> usize {
+        self as usize
+    }
+}
+
+impl MeshIndex for u16 {
+    const MAX: usize = 1 << 16;
+    #[inline]
+    fn index(self) -> usize {
+        self as usize
+    }
+}
+
+/// A face: a convex planar polygon given by vertex indices (of type `I`, see [`MeshIndex`]),
+/// and its colour.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Face<'a> {
+pub struct Face<'a, I = u16> {
     /// Indices into the mesh's vertices, in order. Counter-clockwise seen from outside for
     /// meshes that are culled.
-    pub indices: &'a [u16],
+    pub indices: &'a [I],
     /// Colour (screen-space mode draws it as is; model mode shades it).
     pub color: Rgb565,
     /// Opacity, 255 = opaque (the default). Methods that resolve one visible surface per
@@ -21,8 +55,8 @@ pub struct Face<'a> {
     pub alpha: u8,
 }
 
-impl<'a> Face<'a> {
-    /// An opaque face.
+impl<'a> Face<'a, u16> {
+    /// An opaque face (`u16` indices; for `u8` write the struct literal).
     pub const fn new(indices: &'a [u16], color: Rgb565) -> Self {
         Face {
             indices,
@@ -40,20 +74,63 @@ impl<'a> Face<'a> {
     }
 }
 
-/// A mesh: vertices and faces, both borrowed.
+/// A mesh: vertices, faces and optionally one normal per face, all borrowed (so a converted
+/// model can live in flash).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Mesh<'a, N> {
+pub struct Mesh<'a, N, I = u16> {
     /// Vertex positions.
     pub vertices: &'a [Vec3<N>],
     /// Faces.
-    pub faces: &'a [Face<'a>],
+    pub faces: &'a [Face<'a, I>],
+    /// Precomputed face normals, or empty. Empty: model mode computes each face's normal per
+    /// frame from its first three (transformed) vertices. Otherwise exactly one model-space
+    /// outward normal per face, of unit length (any positive length works; a zero normal
+    /// marks a degenerate face, which is skipped); model mode transforms it to view space
+    /// and uses it for back-face culling and lighting instead of the cross product.
+    /// Screen-space mode ignores it. Any other length is [`Error::Normals`].
+    pub normals: &'a [Vec3<N>],
+}
+
+impl<'a, N, I> Mesh<'a, N, I> {
+    /// A mesh whose normals model mode computes per frame.
+    pub const fn new(vertices: &'a [Vec3<N>], faces: &'a [Face<'a, I>]) -> Self {
+        Mesh {
+            vertices,
+            faces,
+            normals: &[],
+        }
+    }
+    /// A mesh with one precomputed model-space unit normal per face (see [`Mesh::normals`]).
+    pub const fn with_normals(
+        vertices: &'a [Vec3<N>],
+        faces: &'a [Face<'a, I>],
+        normals: &'a [Vec3<N>],
+    ) -> Self {
+        Mesh {
+            vertices,
+            faces,
+            normals,
+        }
+    }
+    /// Checks that `normals` is empty or has one entry per face.
+    pub(crate) fn check_normals(&self) -> Result<(), Error> {
+        let (faces, normals) = (self.faces.len(), self.normals.len());
+        if normals == 0 || normals == faces {
+            Ok(())
+        } else {
+            Err(Error::Normals {
+                faces: faces as u32,
+                normals: normals as u32,
+            })
+        }
+    }
 }
 
 /// A mesh placed in the world.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Object<'a, N> {
+pub struct Object<'a, N, I = u16> {
     /// The mesh.
-    pub mesh: &'a Mesh<'a, N>,
+    pub mesh: &'a Mesh<'a, N, I>,
     /// Model → world transform.
     pub transform: Affine<N>,
 }
@@ -145,9 +222,9 @@ pub struct Light<N> {
 
 /// A scene in model mode: objects, a camera, a light. Faces are flat (Lambert) shaded.
 #[derive(Clone, Copy, Debug)]
-pub struct ModelScene<'a, N> {
+pub struct ModelScene<'a, N, I = u16> {
     /// Objects, drawn in order (earlier wins depth ties).
-    pub objects: &'a [Object<'a, N>],
+    pub objects: &'a [Object<'a, N, I>],
     /// The camera.
     pub camera: Camera<N>,
     /// The light.
@@ -157,9 +234,9 @@ pub struct ModelScene<'a, N> {
 /// A scene whose vertices are already in screen space: x right and y down in pixels, z depth
 /// (smaller is nearer), projected orthographically along z, each face in its own colour.
 #[derive(Clone, Copy, Debug)]
-pub struct ScreenScene<'a, N> {
+pub struct ScreenScene<'a, N, I = u16> {
     /// The mesh.
-    pub mesh: Mesh<'a, N>,
+    pub mesh: Mesh<'a, N, I>,
 }
 
 /// Anything that can feed polygons to a renderer: runs geometry and calls `f` with every

@@ -72,7 +72,7 @@
 //! let v = [q(0.0, 0.0, 1.0), q(8.0, 0.0, 1.0), q(0.0, 8.0, 1.0), // far, first
 //!          q(0.0, 0.0, 0.5), q(8.0, 0.0, 0.5), q(8.0, 8.0, 0.5)]; // near
 //! let faces = [Face::new(&[0, 1, 2], Rgb565::RED), Face::new(&[3, 4, 5], Rgb565::GREEN)];
-//! let scene = ScreenScene { mesh: Mesh { vertices: &v, faces: &faces } };
+//! let scene = ScreenScene { mesh: Mesh::new(&v, &faces) };
 //! // 8-pixel rows in bands of 3 rows, 2 polygons, 8 edges.
 //! let mut r = Tiled::<Q16_16, 8, 3, 2, 8>::new();
 //! let mut pixels = [Rgb565::BLACK; 64];

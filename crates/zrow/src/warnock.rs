@@ -62,7 +62,7 @@
 //!     q(4.0, 0.0, 6.0), q(16.0, 0.0, 6.0), q(8.0, 12.0, 0.0),
 //! ];
 //! let faces = [Face::new(&[0, 1, 2], Rgb565::RED), Face::new(&[3, 4, 5], Rgb565::GREEN)];
-//! let scene = ScreenScene { mesh: Mesh { vertices: &vertices, faces: &faces } };
+//! let scene = ScreenScene { mesh: Mesh::new(&vertices, &faces) };
 //! let cfg = Config::screen(16, 16);
 //! let (mut a, mut b) = ([Rgb565::BLACK; 256], [Rgb565::BLACK; 256]);
 //! // Rows of 16 pixels, bands of 4 rows, 2 polygons, 8 edges, 16 list entries.

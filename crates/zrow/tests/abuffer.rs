@@ -141,10 +141,7 @@ impl<N: Scalar> Owned<N> {
             .map(|(i, &(c, a))| Face::translucent(i, c, a))
             .collect();
         f(&ScreenScene {
-            mesh: Mesh {
-                vertices: &self.vertices,
-                faces: &faces,
-            },
+            mesh: Mesh::new(&self.vertices, &faces),
         })
     }
     fn render<const F: usize>(&self, cfg: &Config) -> Result<Capture<N>, RenderError<()>> {
@@ -486,10 +483,7 @@ fn run<N: Scalar>(verts: Vec<Vec3<N>>, faces: Vec<(Vec<u16>, u8)>) {
         .map(|(i, a)| Face::translucent(i, Rgb565::new(31, 7, 3), *a))
         .collect();
     let scene = ScreenScene {
-        mesh: Mesh {
-            vertices: &verts,
-            faces: &f,
-        },
+        mesh: Mesh::new(&verts, &f),
     };
     let mut r = Box::new(ABuffer::<N, 32, 16, 64, 48>::new());
     let mut cap = Capture::<N>::new(32, 24);

@@ -404,7 +404,7 @@ fn e10_same_renderer_twice_is_identical() {
     }
     let faces = [
         Face {
-            indices: &[0, 1, 2],
+            indices: &[0u16, 1, 2],
             color: Rgb565::RED,
             alpha: 255,
         },
@@ -415,10 +415,7 @@ fn e10_same_renderer_twice_is_identical() {
         },
     ];
     let scene = ScreenScene {
-        mesh: Mesh {
-            vertices: &verts,
-            faces: &faces,
-        },
+        mesh: Mesh::new(&verts, &faces),
     };
     let mut r = Box::new(Big::<Q16_16>::new());
     let mut a = Capture::new(32, 32);
@@ -674,10 +671,7 @@ fn bad_input<N: Scalar>() {
     let cfg = Config::screen(16, 16);
     let run = |verts: &[Vec3<N>], faces: &[Face]| {
         let scene = ScreenScene {
-            mesh: Mesh {
-                vertices: verts,
-                faces,
-            },
+            mesh: Mesh::new(verts, faces),
         };
         let mut r = Box::new(Scanline::<N, 16, 4, 12, 2>::new());
         let mut cap = Capture::<N>::new(16, 16);
@@ -786,6 +780,7 @@ fn bad_input<N: Scalar>() {
         mesh: Mesh {
             vertices: &v,
             faces: &[tri],
+            normals: &[],
         },
     };
     let mut r = Box::new(Scanline::<N, 16, 4, 12, 2>::new());
@@ -818,15 +813,12 @@ fn e23_bad_input_is_a_typed_error_before_any_row() {
         Vec3::new(1.0, 9.0, 1.0),
     ];
     let faces = [Face {
-        indices: &[0, 1, 2],
+        indices: &[0u16, 1, 2],
         color: Rgb565::RED,
         alpha: 255,
     }];
     let scene = ScreenScene {
-        mesh: Mesh {
-            vertices: &v,
-            faces: &faces,
-        },
+        mesh: Mesh::new(&v, &faces),
     };
     let mut r = Box::new(Scanline::<f32, 16, 4, 12, 2>::new());
     let mut cap = Capture::<f32>::new(16, 16);

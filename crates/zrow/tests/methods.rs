@@ -134,10 +134,7 @@ mod no_panic {
             .map(|i| Face::new(i, Rgb565::new(31, 0, 0)))
             .collect();
         let scene = ScreenScene {
-            mesh: Mesh {
-                vertices: verts,
-                faces: &f,
-            },
+            mesh: Mesh::new(verts, &f),
         };
         let mut cap = Capture::<N>::new(32, 24);
         match Box::<R>::default().render(&scene, &Config::screen(32, 24), &mut cap) {

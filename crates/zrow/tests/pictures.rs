@@ -22,10 +22,7 @@ fn draw<N: Scalar>(
         })
         .collect();
     let scene = ScreenScene {
-        mesh: Mesh {
-            vertices: &v,
-            faces: &f,
-        },
+        mesh: Mesh::new(&v, &f),
     };
     let mut display = MockDisplay::new();
     let mut r = Scanline::<N, 16, 8, 32, 8>::new();

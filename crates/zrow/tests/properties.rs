@@ -132,10 +132,7 @@ mod no_panic {
                 alpha: 255,
             })
             .collect();
-        let mesh = Mesh {
-            vertices: &verts,
-            faces: &f,
-        };
+        let mesh = Mesh::new(&verts, &f);
         let mut r = Box::new(zrow::Scanline::<N, 32, 64, 256, 64>::new());
         let mut cap = Capture::<N>::new(32, 24);
         let result = if model {

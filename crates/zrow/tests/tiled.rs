@@ -385,10 +385,7 @@ fn render_raw<N: Scalar, R: Renderer<N>>(
 ) -> Result<FrameStats, RenderError<u16>> {
     let faces: Vec<Face> = idx.iter().map(|i| Face::new(i, Rgb565::RED)).collect();
     let scene = ScreenScene {
-        mesh: Mesh {
-            vertices: v,
-            faces: &faces,
-        },
+        mesh: Mesh::new(v, &faces),
     };
     r.render(&scene, cfg, sink)
 }
@@ -513,10 +510,7 @@ fn capacity_errors_are_typed_and_come_before_any_row() {
 fn survives<N: Scalar>(v: Vec<Vec3<N>>, idx: Vec<Vec<u16>>) -> Option<Capture<N>> {
     let faces: Vec<Face> = idx.iter().map(|i| Face::new(i, Rgb565::RED)).collect();
     let scene = ScreenScene {
-        mesh: Mesh {
-            vertices: &v,
-            faces: &faces,
-        },
+        mesh: Mesh::new(&v, &faces),
     };
     let mut r = Box::new(Tiled::<N, 32, 5, 64, 256>::new());
     let mut cap = Capture::<N>::new(32, 24);

@@ -411,10 +411,7 @@ fn render_keeping<R: Renderer<f32>>(
         .map(|(i, f)| Face::new(f, color_of(i)))
         .collect();
     let scene = ScreenScene {
-        mesh: Mesh {
-            vertices: &verts,
-            faces: &faces,
-        },
+        mesh: Mesh::new(&verts, &faces),
     };
     let mut cap = Capture::new(cfg.width as usize, cfg.height as usize);
     let result = r.render(&scene, cfg, &mut cap);
@@ -570,10 +567,7 @@ fn extreme_input_renders_or_errs_without_panic() {
         ];
         let faces = [Face::new(&[0, 1, 2], Rgb565::RED)];
         let scene = ScreenScene {
-            mesh: Mesh {
-                vertices: &verts,
-                faces: &faces,
-            },
+            mesh: Mesh::new(&verts, &faces),
         };
         let mut cap = Capture::<f32>::new(40, 30);
         let mut w = Box::new(Warnock::<f32, 40, 4, 4, 16, 64>::new());
@@ -601,10 +595,7 @@ mod no_panic {
             })
             .collect();
         let scene = ScreenScene {
-            mesh: Mesh {
-                vertices: &verts,
-                faces: &f,
-            },
+            mesh: Mesh::new(&verts, &f),
         };
         let mut r = Box::new(Warnock::<N, 32, 8, 16, 64, 160>::new());
         let mut cap = Capture::<N>::new(32, 24);

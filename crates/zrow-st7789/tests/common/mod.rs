@@ -41,10 +41,7 @@ impl Polys {
             })
             .collect();
         f(&ScreenScene {
-            mesh: Mesh {
-                vertices: &vertices,
-                faces: &faces,
-            },
+            mesh: Mesh::new(&vertices, &faces),
         })
     }
 }

@@ -127,10 +127,7 @@ impl Polys {
             })
             .collect();
         let scene = ScreenScene {
-            mesh: Mesh {
-                vertices: &verts,
-                faces: &faces,
-            },
+            mesh: Mesh::new(&verts, &faces),
         };
         let mut cap = Capture::new(cfg.width as usize, cfg.height as usize);
         let stats = r.render(&scene, cfg, &mut cap)?;
@@ -310,7 +307,7 @@ pub fn render_model<N: Scalar>(
     camera: Camera<N>,
     cfg: &Config,
 ) -> Capture<N> {
-    let mesh = Mesh { vertices, faces };
+    let mesh = Mesh::new(vertices, faces);
     let objects = [Object {
         mesh: &mesh,
         transform: Affine::identity(),
