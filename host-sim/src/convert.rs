@@ -54,10 +54,14 @@
 //! is measured over the same views and bounded exactly over all orientations
 //! (`distance ± the largest vertex radius`).
 //!
-//! **Emit.** A Rust file of items (`include!`-able, no inner attributes): `NAME`, `VERTICES`,
-//! `NORMALS`, `FACES`, `MESH`, the consts `WIDTH`, `HEIGHT`, `POLYGONS`, `EDGES`, `ACTIVE`, and
-//! `pub type Renderer = zrow::Scanline<N, WIDTH, POLYGONS, EDGES, ACTIVE>`, every public item
-//! documented, the whole report in a header comment. Colours are built with
+//! The measured mesh carries the normals, so culling and shading are the firmware's: model
+//! mode takes a mesh's precomputed normals instead of the cross product ([`zrow::Mesh::normals`]).
+//!
+//! **Emit.** A Rust file of items (`include!`-able, no inner attributes; a build script's copy
+//! comes in with `zrow::include_mesh!`): `NAME`, `VERTICES`, `NORMALS`, `FACES` (`u8` or `u16`
+//! indices), `MESH` (`zrow::Mesh::with_normals`), the consts `WIDTH`, `HEIGHT`, `POLYGONS`,
+//! `EDGES`, `ACTIVE`, and `pub type Renderer = zrow::Scanline<N, WIDTH, POLYGONS, EDGES,
+//! ACTIVE>`, every public item documented, the whole report in a header comment. Colours are built with
 //! `embedded_graphics_core::pixelcolor::Rgb565::new`, so the including crate depends on
 //! `embedded-graphics-core` (as any zrow user does for its sink).
 
@@ -439,15 +443,14 @@ impl Converted {
     pub fn normals_in<N: Scalar>(&self) -> Option<Vec<Vec3<N>>> {
         to_vec3(&self.normals)
     }
-    /// Calls `f` with the model as a zrow [`Mesh`] in format `N` (`None`: a value does not
-    /// fit `N`).
+    /// Calls `f` with the model as a zrow [`Mesh`] in format `N`, with its normals, as the
+    /// firmware will draw it (`None`: a value does not fit `N`). Indices are `u16` here
+    /// whatever [`Converted::index`] says: zrow draws `u8` and `u16` meshes bit for bit alike.
     pub fn with_mesh<N: Scalar, R>(&self, f: impl FnOnce(&Mesh<'_, N>) -> R) -> Option<R> {
         let vertices = self.vertices_in::<N>()?;
+        let normals = self.normals_in::<N>()?;
         let faces = zrow_faces(&self.faces);
-        Some(f(&Mesh {
-            vertices: &vertices,
-            faces: &faces,
-        }))
+        Some(f(&Mesh::with_normals(&vertices, &faces, &normals)))
     }
 }
 
@@ -732,8 +735,8 @@ pub fn convert_model(model: &LoadedModel, opts: &ConvertOptions) -> Result<Conve
 
     // 6. Requirements over the views.
     let (views, measured_depth) = match opts.format {
-        Format::Q16_16 => measure_all::<Q16_16>(file, &vertices, &faces, opts)?,
-        Format::F32 => measure_all::<f32>(file, &vertices, &faces, opts)?,
+        Format::Q16_16 => measure_all::<Q16_16>(file, &vertices, &faces, &normals, opts)?,
+        Format::F32 => measure_all::<f32>(file, &vertices, &faces, &normals, opts)?,
     };
     // The check views never lower the capacities; if one needed more, it raises them (and
     // the report says so).
@@ -1106,20 +1109,22 @@ fn measure_all<N: Scalar>(
     file: &str,
     vertices: &[P3],
     faces: &[ConvertedFace],
+    normals: &[P3],
     opts: &ConvertOptions,
 ) -> Result<(ViewStats, (f64, f64)), SimError> {
-    let verts: Vec<Vec3<N>> = to_vec3(vertices).ok_or_else(|| {
+    let misfit = || {
         model_error(
             file,
             None,
             format!("a position does not fit the {} format", N::NAME),
         )
-    })?;
-    let zfaces = zrow_faces(faces);
-    let mesh = Mesh {
-        vertices: &verts,
-        faces: &zfaces,
     };
+    let verts: Vec<Vec3<N>> = to_vec3(vertices).ok_or_else(misfit)?;
+    let norms: Vec<Vec3<N>> = to_vec3(normals).ok_or_else(misfit)?;
+    let zfaces = zrow_faces(faces);
+    // The data the firmware will hold, normals included (model mode culls and shades with
+    // them).
+    let mesh = Mesh::with_normals(&verts, &zfaces, &norms);
     let blame = |e: zrow::Error| {
         use zrow::Error::*;
         let face = match e {
@@ -1326,8 +1331,8 @@ fn emit(c: &Converted, name: &str) -> String {
     let _ = writeln!(
         s,
         "];\n\n/// The mesh, for a [`zrow::Object`].\n\
-         pub static MESH: zrow::Mesh<'static, {n_type}, {i_type}> = zrow::Mesh {{\n    \
-         vertices: &VERTICES,\n    faces: &FACES,\n    normals: &NORMALS,\n}};\n\n\
+         pub static MESH: zrow::Mesh<'static, {n_type}, {i_type}> =\n    \
+         zrow::Mesh::with_normals(&VERTICES, &FACES, &NORMALS);\n\n\
          /// Row width the capacities were measured for (pixels).\npub const WIDTH: usize = {};\n\
          /// Frame height the capacities were measured for (pixels).\npub const HEIGHT: usize = {};\n\
          /// Polygon table capacity: most polygons on screen in any orientation, plus the margin.\n\

@@ -1,6 +1,7 @@
 //! The model converter (`zrow_sim::convert`, `zrow-sim convert`): what it emits, what it
 //! reports, what it refuses.
 
+use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use zrow_sim::convert::{
@@ -331,7 +332,6 @@ fn the_emitted_text_holds_exactly_the_converted_values() {
         let faces = block(&c.rust, "FACES");
         assert_eq!(faces.len(), c.faces.len());
         for (line, f) in faces.iter().zip(&c.faces) {
-            use embedded_graphics::pixelcolor::RgbColor;
             let (r, g, b) = (f.color.r(), f.color.g(), f.color.b());
             assert!(
                 line.contains(&format!("indices: &{:?},", f.indices)),
@@ -391,13 +391,22 @@ fn the_converted_mesh_draws_like_the_loaded_model() {
                     render_model_image(&model, view, 96, 80, Algo::Scanline, format).unwrap();
                 let got = zrow_sim::convert::render_converted(&c, view, 96, 80).unwrap();
                 assert!(want.pixels.iter().any(|&p| p != want.pixels[0]));
-                let diff = want
-                    .pixels
-                    .iter()
-                    .zip(&got.pixels)
-                    .filter(|(a, b)| a != b)
-                    .count();
-                assert_eq!(diff, 0, "{name} {format:?} {view:?}");
+                // The converted mesh carries precomputed normals, which model mode culls and
+                // shades with: same coverage (the background stays where it was), each
+                // colour channel within 1 LSB of the cross product's shading.
+                let mut differing = 0;
+                for (k, (a, b)) in want.pixels.iter().zip(&got.pixels).enumerate() {
+                    let bg = Rgb565::BLACK;
+                    assert_eq!(*a == bg, *b == bg, "{name} {format:?} {view:?}: pixel {k}");
+                    let close = |x: u8, y: u8| x.abs_diff(y) <= 1;
+                    assert!(
+                        close(a.r(), b.r()) && close(a.g(), b.g()) && close(a.b(), b.b()),
+                        "{name} {format:?} {view:?}: pixel {k}: {a:?} vs {b:?}"
+                    );
+                    differing += usize::from(a != b);
+                }
+                // Most pixels are exactly equal.
+                assert!(differing * 10 < want.pixels.len(), "{name}: {differing}");
             }
         }
     }
