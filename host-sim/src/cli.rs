@@ -12,7 +12,15 @@
 //!                       [--algo scanline] [--format q16.16|f32] --out OUT.png
 //! ```
 //!
-//! Flags may come in any order, as `--flag value` or `--flag=value`. `--screen` (`--model`) and
+//! and the converter (a model to const Rust data for flash, [`crate::convert`]):
+//!
+//! ```text
+//! zrow-sim convert --model FILE --out FILE.rs [--format q16.16|f32] [--size WxH]
+//!                  [--distance D] [--name NAME] [--checks N] [--strict]
+//! ```
+//!
+//! Flags may come in any order, as `--flag value` or `--flag=value` (`--strict` takes no
+//! value). `--screen` (`--model`) and
 //! `--out` are required; `--size` defaults to 240x240 (the ST7789 panel), `--algo` to `scanline` and
 //! `--format` to `q16.16`. A flag given twice, an unknown flag or a bad value is a usage error.
 
@@ -48,6 +56,16 @@ usage:
   --pitch DEG     camera elevation, -89..=89 (default 20)
   --distance D    camera distance from the origin, 0 < D < 20 (default 3)
 
+  zrow-sim convert --model FILE --out FILE.rs [--format FMT] [--size WxH] [--distance D]
+                   [--name NAME] [--checks N] [--strict]
+                  writes the model as const Rust data for flash (normalised positions in the
+                  format, per-face normals, u8 or u16 indices, Rgb565 colours) with the
+                  scan-line capacities measured over all orientations at that size and
+                  distance, and prints the report (changes made, quantisation error, RAM)
+  --name NAME     the model's name in the file (default: the model's file stem)
+  --checks N      random extra orientations that check the sampled capacities (default 10000)
+  --strict        refuse to split or triangulate faces, and non-manifold models: an error
+
 On bad input it prints one line `error: FILE:LINE: message` and exits non-zero.";
 
 /// Largest frame side (zrow's largest viewport).
@@ -58,8 +76,8 @@ pub const MAX_SIDE: u16 = zrow::raster::MAX_VIEWPORT;
 pub enum Command {
     /// Print [`USAGE`].
     Help,
-    /// Render to a PNG: `render` or `render-model` (one variant, so a front end dispatches
-    /// both with [`render`]).
+    /// Render to a PNG (`render`, `render-model`) or convert a model (`convert`): one
+    /// variant, so a front end dispatches them all with [`render`].
     Render(RenderArgs),
 }
 
@@ -70,6 +88,19 @@ pub enum RenderArgs {
     Screen(ScreenArgs),
     /// `render-model`: a model seen by the orbiting camera.
     Model(RenderModelArgs),
+    /// `convert`: a model to const Rust data (writes a `.rs` file, not a PNG).
+    Convert(ConvertArgs),
+}
+
+/// The arguments of `convert`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ConvertArgs {
+    /// The model file.
+    pub model: PathBuf,
+    /// The Rust file to write.
+    pub out: PathBuf,
+    /// Format, size, distance, name, strictness, views.
+    pub options: crate::convert::ConvertOptions,
 }
 
 /// The arguments of `render`.
@@ -132,6 +163,17 @@ const RENDER_MODEL_FLAGS: &[&str] = &[
     "--distance",
 ];
 
+const CONVERT_FLAGS: &[&str] = &[
+    "--model",
+    "--out",
+    "--format",
+    "--size",
+    "--distance",
+    "--name",
+    "--checks",
+    "--strict",
+];
+
 /// `a, b or c`.
 fn or_list(items: &[&str]) -> String {
     match items {
@@ -144,13 +186,14 @@ fn or_list(items: &[&str]) -> String {
 /// Parses the arguments after the program name.
 pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, SimError> {
     let mut args = args.into_iter();
-    let expected = "expected `render` or `render-model`";
+    let expected = "expected `render`, `render-model` or `convert`";
     let Some(cmd) = args.next() else {
         return Err(usage(format!("missing command: {expected}")));
     };
     let (name, allowed) = match cmd.to_str() {
         Some("render") => ("render", RENDER_FLAGS),
         Some("render-model") => ("render-model", RENDER_MODEL_FLAGS),
+        Some("convert") => ("convert", CONVERT_FLAGS),
         Some("-h" | "--help" | "help") => return Ok(Command::Help),
         Some(other) => {
             return Err(usage(format!(
@@ -167,6 +210,9 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
     let mut format = None;
     let mut view = View::default();
     let mut angles: Vec<&str> = Vec::new();
+    let mut strict = false;
+    let mut name_flag = None;
+    let mut checks = None;
     while let Some(arg) = args.next() {
         let text = arg
             .to_str()
@@ -186,6 +232,15 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
                 or_list(allowed)
             )));
         };
+        if flag == "--strict" {
+            if value.is_some() {
+                return Err(usage("--strict takes no value"));
+            }
+            if std::mem::replace(&mut strict, true) {
+                return Err(usage("--strict given twice"));
+            }
+            continue;
+        }
         let value = match value.or_else(|| args.next()) {
             Some(v) => v,
             None => return Err(usage(format!("{flag} needs a value"))),
@@ -233,6 +288,17 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
                     ))
                 })?;
                 format.replace(parsed).is_some()
+            }
+            "--name" => name_flag.replace(text_value()?).is_some(),
+            "--checks" => {
+                let v = text_value()?;
+                let parsed = v.parse::<usize>().ok().ok_or_else(|| {
+                    usage(format!(
+                        "bad --checks `{}`: expected a count",
+                        v.escape_debug()
+                    ))
+                })?;
+                checks.replace(parsed).is_some()
             }
             _ => {
                 // --yaw, --pitch, --distance
@@ -282,6 +348,50 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
             format,
         })));
     }
+    if name == "convert" {
+        let model = path("--model").ok_or_else(|| usage("convert needs --model FILE"))?;
+        let out = out.ok_or_else(|| usage("convert needs --out FILE.rs"))?;
+        let defaults = crate::convert::ConvertOptions::default();
+        let stem = model
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let stem: String = stem
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '-' {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect();
+        let options = crate::convert::ConvertOptions {
+            format,
+            width,
+            height,
+            distance: view.distance,
+            strict,
+            name: name_flag.unwrap_or(if stem.is_empty() {
+                defaults.name.clone()
+            } else {
+                stem
+            }),
+            check_views: checks.unwrap_or(defaults.check_views),
+            ..defaults
+        };
+        View {
+            distance: options.distance,
+            ..View::default()
+        }
+        .validate()
+        .map_err(|m| usage(format!("bad view: {m}")))?;
+        return Ok(Command::Render(RenderArgs::Convert(ConvertArgs {
+            model,
+            out,
+            options,
+        })));
+    }
     let model = path("--model").ok_or_else(|| usage("render-model needs --model FILE"))?;
     let out = out.ok_or_else(|| usage("render-model needs --out OUT.png"))?;
     view.validate()
@@ -297,12 +407,34 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
     })))
 }
 
-/// Runs `render` or `render-model`.
+/// Runs `render`, `render-model` or `convert`.
 pub fn render(args: &RenderArgs) -> Result<(), SimError> {
     match args {
         RenderArgs::Screen(a) => render_screen(a),
         RenderArgs::Model(a) => render_model(a),
+        RenderArgs::Convert(a) => convert(a),
     }
+}
+
+/// Runs `convert`: loads and converts the model, writes the Rust file, prints the report and
+/// the time the conversion took on stdout.
+pub fn convert(args: &ConvertArgs) -> Result<(), SimError> {
+    let start = std::time::Instant::now();
+    let converted = crate::convert::convert(&args.model, &args.options)?;
+    let took = start.elapsed();
+    std::fs::write(&args.out, &converted.rust).map_err(|source| SimError::Io {
+        path: args.out.display().to_string(),
+        action: "write",
+        source,
+    })?;
+    println!("{}", converted.report);
+    println!(
+        "wrote {} ({} bytes of Rust) in {:.0} ms",
+        args.out.display(),
+        converted.rust.len(),
+        took.as_secs_f64() * 1e3
+    );
+    Ok(())
 }
 
 /// Runs `render`: reads and parses the scene, renders it, writes the PNG.
@@ -397,6 +529,58 @@ mod tests {
             ..View::default()
         };
         assert_eq!(got.view, want);
+    }
+
+    #[test]
+    fn convert_flags_and_defaults() {
+        let a = [
+            "convert",
+            "--model",
+            "dir/my model.obj",
+            "--out=m.rs",
+            "--strict",
+            "--format",
+            "f32",
+            "--distance",
+            "4",
+        ];
+        let Command::Render(RenderArgs::Convert(got)) = parse(&a).unwrap() else {
+            panic!()
+        };
+        assert_eq!(got.model, PathBuf::from("dir/my model.obj"));
+        assert_eq!(got.out, PathBuf::from("m.rs"));
+        let o = &got.options;
+        assert_eq!(
+            (o.name.as_str(), o.strict, o.format),
+            ("my_model", true, Format::F32)
+        );
+        assert_eq!(
+            (o.width, o.height, o.distance, o.check_views),
+            (240, 240, 4.0, 10_000)
+        );
+        let b = [
+            "convert", "--model", "a.stl", "--out", "a.rs", "--name", "ico",
+        ];
+        let Command::Render(RenderArgs::Convert(got)) = parse(&b).unwrap() else {
+            panic!()
+        };
+        assert_eq!(
+            (got.options.name.as_str(), got.options.strict),
+            ("ico", false)
+        );
+        for (args, want) in [
+            (&["convert", "--out", "a.rs"][..], "convert needs --model"),
+            (&["convert", "--model", "a.obj"][..], "convert needs --out"),
+            (
+                &["convert", "--strict", "--strict"][..],
+                "--strict given twice",
+            ),
+            (&["convert", "--checks", "many"][..], "bad --checks `many`"),
+            (&["convert", "--yaw", "3"][..], "unknown argument `--yaw`"),
+        ] {
+            let e = parse(args).unwrap_err().to_string();
+            assert!(e.contains(want), "{args:?}: {e}");
+        }
     }
 
     #[test]

@@ -20,6 +20,10 @@
 //! orbiting camera under a fixed light ([`model_render::render_model_image`], which the
 //! window shares).
 //!
+//! `zrow-sim convert --model FILE --out FILE.rs` ([`convert`]) turns a model into const Rust
+//! data for flash with the scan-line capacities it needs from any orientation, and reports
+//! every change it made, the quantisation error and the RAM.
+//!
 //! Every failure is a [`SimError`] that prints on one line.
 //!
 //! ```
@@ -32,6 +36,7 @@
 #![deny(missing_docs)]
 
 pub mod cli;
+pub mod convert;
 pub mod demo;
 pub mod error;
 pub mod model;
