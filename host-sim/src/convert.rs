@@ -1251,7 +1251,13 @@ fn render_in<N: Scalar + Send + Sync>(
             let mut rows = vec![0; height as usize + 1];
             let req = zrow::requirements(&scene, &cfg, &mut rows).map_err(scene_error)?;
             crate::render::check_capacity(&req).map_err(scene_error)?;
-            crate::render::draw(crate::render::Algo::Scanline, &scene, &cfg, scene_error)
+            crate::render::draw(
+                crate::render::Algo::Scanline,
+                &scene,
+                &cfg,
+                crate::render::Structure::default(),
+                scene_error,
+            )
         })
         .ok_or_else(|| scene_error(zrow::Error::BadConfig))?
 }
