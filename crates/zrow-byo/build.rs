@@ -1,0 +1,25 @@
+//! Converts `assets/models/torus.off` and `assets/models/cube.obj` into `$OUT_DIR/torus.rs` and
+//! `$OUT_DIR/cube.rs` (const data for flash: Q16.16 positions, u8 indices, per-face normals,
+//! scan-line capacities for every orientation at 240×240, distance 3), and keeps each
+//! converter report next to it (`$OUT_DIR/NAME.txt`). A bad model fails the build with the
+//! converter's one-line error naming file and line.
+
+use std::path::{Path, PathBuf};
+use zrow_sim::convert::{write_for_build, ConvertOptions};
+
+fn main() {
+    let out = PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
+    let models = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/models");
+    for (file, name) in [("torus.off", "torus"), ("cube.obj", "cube")] {
+        match write_for_build(&models.join(file), &ConvertOptions::default(), &out, name) {
+            Ok(report) => {
+                std::fs::write(out.join(format!("{name}.txt")), report.to_string())
+                    .expect("write the report");
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                std::process::exit(1);
+            }
+        }
+    }
+}

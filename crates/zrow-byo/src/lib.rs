@@ -1,0 +1,33 @@
+//! # zrow-byo — bring your own model
+//!
+//! The build-time path of "model only what a scene requires": `build.rs` runs zrow-sim's
+//! converter (`zrow_sim::convert::write_for_build` — checks, quantisation, capacities over
+//! every orientation) on a model file, and [`zrow::include_mesh!`] pulls the generated const
+//! data in. Everything below lives in flash; the only RAM is the renderer, whose capacities
+//! the converter measured:
+//!
+//! ```
+//! use zrow_byo::torus;
+//! use zrow::{FrameBuffer, Renderer};
+//! // The scan-line renderer sized for this model: its RAM is what the converter reported.
+//! assert!(torus::Renderer::RAM_BYTES < 16 * 1024);
+//! assert_eq!(torus::MESH.faces.len(), torus::FACES.len());
+//! ```
+//!
+//! The same in a firmware crate: add `zrow-sim` as a build-dependency, call
+//! `write_for_build(model, &options, out_dir, "name")` from `build.rs`, and
+//! `zrow::include_mesh!("name")` where the mesh is wanted.
+#![no_std]
+#![forbid(unsafe_code)]
+#![deny(missing_docs)]
+
+/// `assets/models/torus.off`: 128 vertices (u8 indices), 128 quadrilaterals.
+pub mod torus {
+    zrow::include_mesh!("torus");
+}
+
+/// `assets/models/cube.obj`: one closed convex solid, so back-face culling alone draws it
+/// exactly ([`zrow::cullonly`]).
+pub mod cube {
+    zrow::include_mesh!("cube");
+}

@@ -1,0 +1,79 @@
+//! The included meshes under orientations the converter never sampled (a seed it does not
+//! use): the renderer sized by the converter never runs out of room, and draws what a
+//! generously sized one draws; the cube, a closed convex solid, is drawn exactly by culling
+//! alone at the converter's capacities.
+
+use embedded_graphics_core::pixelcolor::Rgb565;
+use zrow::cullonly::CullOnly;
+use zrow::{
+    Affine, Config, FrameBuffer, Mesh, MeshIndex, ModelScene, Object, Renderer, Scanline, Q16_16,
+};
+use zrow_byo::{cube, torus};
+use zrow_sim::convert::random_rotations;
+use zrow_sim::model_render::{light, View};
+
+type Big = Scanline<Q16_16, 240, 2048, 8192, 512>;
+
+/// Renders `mesh` turned by `rot` with `R`, as the converter's views are set up.
+fn draw<R: Renderer<Q16_16>, I: MeshIndex>(
+    r: &mut R,
+    mesh: &Mesh<'_, Q16_16, I>,
+    rot: &[[f64; 3]; 3],
+) -> Result<Vec<Rgb565>, zrow::RenderError<core::convert::Infallible>> {
+    let m = rot.map(|row| row.map(|c| c as f32));
+    let transform = Affine::from_f32([
+        [m[0][0], m[0][1], m[0][2], 0.0],
+        [m[1][0], m[1][1], m[1][2], 0.0],
+        [m[2][0], m[2][1], m[2][2], 0.0],
+    ])
+    .unwrap();
+    let objects = [Object { mesh, transform }];
+    let scene = ModelScene {
+        objects: &objects,
+        camera: View::default().camera().unwrap(),
+        light: light(),
+    };
+    let mut pixels = vec![Rgb565::new(0, 0, 0); 240 * 240];
+    r.render(
+        &scene,
+        &Config::model(240, 240),
+        &mut FrameBuffer::new(&mut pixels, 240),
+    )?;
+    Ok(pixels)
+}
+
+#[test]
+fn the_converted_capacities_hold_under_unsampled_views() {
+    let (mut small, mut big) = (Box::new(torus::Renderer::new()), Box::new(Big::new()));
+    for rot in random_rotations(300, 0x05ee_db10) {
+        let got = draw(&mut *small, &torus::MESH, &rot).expect("capacities hold");
+        assert!(got == draw(&mut *big, &torus::MESH, &rot).unwrap());
+    }
+    println!(
+        "torus: converter capacities P={} E={} A={}, renderer RAM {} B (a 240x240 frame + 16-bit z-buffer: {} B)",
+        torus::POLYGONS,
+        torus::EDGES,
+        torus::ACTIVE,
+        torus::Renderer::RAM_BYTES,
+        240 * 240 * 4
+    );
+}
+
+#[test]
+fn the_cube_needs_culling_alone() {
+    assert!(zrow::structure::closed_convex(&cube::MESH));
+    assert!(!zrow::structure::closed_convex(&torus::MESH));
+    let mut cull = Box::new(CullOnly::<
+        Q16_16,
+        { cube::WIDTH },
+        { cube::POLYGONS },
+        { cube::EDGES },
+    >::new());
+    let mut scan = Box::new(cube::Renderer::new());
+    for rot in random_rotations(100, 0xc0be) {
+        assert!(
+            draw(&mut *cull, &cube::MESH, &rot).unwrap()
+                == draw(&mut *scan, &cube::MESH, &rot).unwrap()
+        );
+    }
+}
