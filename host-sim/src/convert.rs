@@ -302,6 +302,10 @@ pub struct Report {
     pub frame_z32_ram: usize,
     /// Flash bytes of the emitted data.
     pub flash: FlashBytes,
+    /// RAM of back-face culling alone (`zrow::cullonly::CullOnly`) at the capacities, when
+    /// the model is one closed convex solid (`zrow::structure::closed_convex`): then it draws
+    /// the model exactly with no depth test, and `Cheapest` in the emitted file is it.
+    pub cull_only_ram: Option<usize>,
 }
 
 impl fmt::Display for Report {
@@ -393,6 +397,17 @@ impl fmt::Display for Report {
              z-buffer {} bytes",
             self.scanline_ram, self.frame_z16_ram, self.frame_z32_ram
         )?;
+        match self.cull_only_ram {
+            Some(ram) => writeln!(
+                f,
+                "  structure: one closed convex solid: back-face culling alone draws it exactly \
+                 (Cheapest = zrow::cullonly::CullOnly, {ram} bytes, no depth test)"
+            )?,
+            None => writeln!(
+                f,
+                "  structure: not one closed convex solid: Cheapest = the scan-line Renderer"
+            )?,
+        }
         let fl = &self.flash;
         write!(
             f,
@@ -795,6 +810,7 @@ pub fn convert_model(model: &LoadedModel, opts: &ConvertOptions) -> Result<Conve
         frame_z16_ram: w * h * 4,
         frame_z32_ram: w * h * 6,
         flash,
+        cull_only_ram: None,
     };
     let mut converted = Converted {
         format: opts.format,
@@ -807,8 +823,39 @@ pub fn convert_model(model: &LoadedModel, opts: &ConvertOptions) -> Result<Conve
         report,
         rust: String::new(),
     };
+    // Judged on the emitted values (the format's rounding), as the firmware will hold them.
+    let convex = match opts.format {
+        Format::Q16_16 => converted.with_mesh::<Q16_16, _>(zrow::structure::closed_convex),
+        Format::F32 => converted.with_mesh::<f32, _>(zrow::structure::closed_convex),
+    };
+    if convex == Some(true) {
+        let (p, e) = (capacities.polygons as usize, capacities.edges as usize);
+        converted.report.cull_only_ram = Some(match opts.format {
+            Format::Q16_16 => cull_only_ram::<Q16_16>(w, p, e),
+            Format::F32 => cull_only_ram::<f32>(w, p, e),
+        });
+    }
     converted.rust = emit(&converted, &opts.name);
     Ok(converted)
+}
+
+/// `CullOnly::<N, W, P, E>::RAM_BYTES` at run-time capacities: linear in each (computed from
+/// the struct's size at small ones; padding may add a few bytes).
+fn cull_only_ram<N: Scalar>(w: usize, p: usize, e: usize) -> usize {
+    type C<N, const W: usize, const P: usize, const E: usize> =
+        zrow::cullonly::CullOnly<N, W, P, E>;
+    let base = C::<N, 1, 1, 1>::RAM_BYTES;
+    let slope = [
+        C::<N, 65, 1, 1>::RAM_BYTES - base,
+        C::<N, 1, 65, 1>::RAM_BYTES - base,
+        C::<N, 1, 1, 65>::RAM_BYTES - base,
+    ];
+    let caps = [w.max(1), p.max(1), e.max(1)];
+    base + caps
+        .iter()
+        .zip(slope)
+        .map(|(&c, s)| (c - 1) * s / 64)
+        .sum::<usize>()
 }
 
 fn check_options(opts: &ConvertOptions) -> Result<(), SimError> {
@@ -1351,6 +1398,19 @@ fn emit(c: &Converted, name: &str) -> String {
          pub type Renderer = zrow::Scanline<{n_type}, WIDTH, POLYGONS, EDGES, ACTIVE>;",
         r.size.0, r.size.1, cap.polygons, cap.edges, cap.active_polygons, r.scanline_ram
     );
+    let _ = match r.cull_only_ram {
+        Some(ram) => writeln!(
+            s,
+            "\n/// The cheapest exact renderer for this model: it is one closed convex solid, so\n\
+             /// back-face culling alone draws it exactly, with no depth test ({ram} bytes of RAM).\n\
+             pub type Cheapest = zrow::cullonly::CullOnly<{n_type}, WIDTH, POLYGONS, EDGES>;"
+        ),
+        None => writeln!(
+            s,
+            "\n/// The cheapest exact renderer for this model: it is not one closed convex solid, so\n\
+             /// the scan-line renderer.\npub type Cheapest = Renderer;"
+        ),
+    };
     s
 }
 

@@ -524,3 +524,26 @@ fn cli_convert_bad_input_is_one_line_naming_file_and_line() {
     assert_eq!(run.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&run.stderr).contains("--strict takes no value"));
 }
+
+/// The converter names the cheapest exact renderer: culling alone for a closed convex solid
+/// (cube, icosphere — the STL's welded vertices close it), the scan-line renderer otherwise.
+#[test]
+fn the_cheapest_exact_renderer_follows_the_structure() {
+    for (name, convex) in [
+        ("cube.obj", true),
+        ("icosphere.stl", true),
+        ("torus.off", false),
+    ] {
+        let c = convert(&asset(name), &quick()).unwrap();
+        assert_eq!(c.report.cull_only_ram.is_some(), convex, "{name}");
+        let cull =
+            "pub type Cheapest = zrow::cullonly::CullOnly<zrow::Q16_16, WIDTH, POLYGONS, EDGES>;";
+        assert_eq!(c.rust.contains(cull), convex, "{name}");
+        assert_eq!(
+            c.rust.contains("pub type Cheapest = Renderer;"),
+            !convex,
+            "{name}"
+        );
+        assert!(c.report.to_string().contains("structure: "), "{name}");
+    }
+}

@@ -4,7 +4,6 @@
 //! alone at the converter's capacities.
 
 use embedded_graphics_core::pixelcolor::Rgb565;
-use zrow::cullonly::CullOnly;
 use zrow::{
     Affine, Config, FrameBuffer, Mesh, MeshIndex, ModelScene, Object, Renderer, Scanline, Q16_16,
 };
@@ -63,12 +62,10 @@ fn the_converted_capacities_hold_under_unsampled_views() {
 fn the_cube_needs_culling_alone() {
     assert!(zrow::structure::closed_convex(&cube::MESH));
     assert!(!zrow::structure::closed_convex(&torus::MESH));
-    let mut cull = Box::new(CullOnly::<
-        Q16_16,
-        { cube::WIDTH },
-        { cube::POLYGONS },
-        { cube::EDGES },
-    >::new());
+    // The converter found the cube closed and convex, so its `Cheapest` is culling alone.
+    assert_eq!(<cube::Cheapest as Renderer<Q16_16>>::NAME, "cull-only");
+    assert_eq!(<torus::Cheapest as Renderer<Q16_16>>::NAME, "scanline");
+    let mut cull = Box::new(cube::Cheapest::new());
     let mut scan = Box::new(cube::Renderer::new());
     for rot in random_rotations(100, 0xc0be) {
         assert!(
