@@ -19,7 +19,7 @@
 //! The rows still carry depth, as [`Row`] promises: each painted pixel's depth is its
 //! polygon's plane stepped along the span (one addition a pixel), never compared.
 //!
-//! RAM ([`CullOnly::RAM_BYTES`]): the polygon table (`P` polygons, `E` edges) and one row of
+//! RAM ([`CullOnly::RAM_BYTES`](crate::cullonly::CullOnly::RAM_BYTES)): the polygon table (`P` polygons, `E` edges) and one row of
 //! colour and depth. Rows leave top to bottom; every capacity error comes before the first.
 //!
 //! [`Row`]: crate::sink::Row

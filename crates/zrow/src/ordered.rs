@@ -8,7 +8,7 @@
 //! of it, separate convex objects with back faces culled — are like this.
 //!
 //! **Exact** (every sample shows the polygon any exact method shows, ties included) when the
-//! scene satisfies [`Ordered::exact_for`]: every two polygons that share a sample have
+//! scene satisfies [`Ordered::exact_for`](crate::ordered::Ordered::exact_for): every two polygons that share a sample have
 //! disjoint depth ranges over their samples, or touch only at one depth, the polygon first in
 //! the scene being nearer. Depth ranges are taken over each polygon's own samples (both ends
 //! of every row span; depth is linear along a row), so they are the ranges an exact method
@@ -18,7 +18,7 @@
 //! `zrow-sim`'s `auto` does.
 //!
 //! The rows carry each painted pixel's depth (the plane stepped along the span, never
-//! compared). RAM ([`Ordered::RAM_BYTES`]): the polygon table, the order and each polygon's
+//! compared). RAM ([`Ordered::RAM_BYTES`](crate::ordered::Ordered::RAM_BYTES)): the polygon table, the order and each polygon's
 //! depth range (`P·(2 + 2·size_of::<N>())` bytes more), one row of colour and depth.
 
 use crate::error::RenderError;
