@@ -18,8 +18,8 @@ use zrow::ordered::Ordered;
 use zrow::structure::closed_convex;
 use zrow::{Config, Face, Mesh, Renderer, Scalar, Q16_16};
 
-type Cull<N> = CullOnly<N, 256, 4096, 16384>;
-type Order<N> = Ordered<N, 256, 4096, 16384>;
+type Cull<N> = CullOnly<N, 256, 1024, 4096>;
+type Order<N> = Ordered<N, 256, 1024, 4096>;
 
 /// Renders the named zrow-scenes scene with `R`.
 fn scene_with<N: zrow_scenes::Format, R: Renderer<N>>(
