@@ -361,7 +361,9 @@ pub struct Structure {
 ///    polygons, `zrow::ordered::Ordered::exact_for`): **ordered** — a sort, no depth test.
 /// 3. Otherwise the **scan-line** method.
 ///
-/// (A static scene's precomputed BSP order is not chosen yet.) Runs the check on a thread
+/// A static scene of several separate convex solids is drawn exactly by a precomputed BSP
+/// order over the objects (`zrow::bsporder`, no depth test); `zrow-sim`'s scenes are one model
+/// each, so `auto` here never meets one (the core's tests do). Runs the check on a thread
 /// with room for the host's polygon table. Errors are the scene's, as a render would give.
 pub fn choose<N: Scalar + Send + Sync, S: Scene<N> + Sync>(
     scene: &S,

@@ -65,6 +65,8 @@ pub mod structure;
 pub mod abuffer;
 /// The BSP tree: built with splitting, traversed in view order.
 pub mod bsp;
+/// A precomputed BSP order over whole convex objects: for static scenes, no split, no depth.
+pub mod bsporder;
 /// Back-face culling alone: exact for one closed convex solid.
 pub mod cullonly;
 /// Depth-sort (Newell's painter): sort, the five tests, split.
