@@ -13,7 +13,8 @@ use libfuzzer_sys::fuzz_target;
 use zrow::{
     abuffer::ABuffer, bsp::Bsp, cullonly::CullOnly, depthsort::DepthSort, ordered::Ordered,
     tiled::Tiled, warnock::Warnock, Affine, Camera, Config, Cull, Face, Light, Mesh, ModelScene,
-    Object, Projection, Renderer, Row, RowSink, Scalar, Scanline, Scene, ScreenScene, Vec3, ZBuffer, Q16_16,
+    Object, Projection, Renderer, Row, RowSink, Scalar, Scanline, Scene, ScreenScene, Vec3,
+    ZBuffer, Q16_16,
 };
 
 /// Reads the input front to back; zeros once it runs out.
@@ -46,7 +47,10 @@ impl<N> RowSink<N> for Sink {
 }
 
 fn run<N: Scalar, R: Renderer<N>>(r: &mut R, scene: &impl Scene<N>, cfg: &Config) {
-    let mut sink = Sink { height: cfg.height, next: 0 };
+    let mut sink = Sink {
+        height: cfg.height,
+        next: 0,
+    };
     match r.render(scene, cfg, &mut sink) {
         Ok(_) => assert_eq!(sink.next, cfg.height, "{}: every row on success", R::NAME),
         Err(_) => assert_eq!(sink.next, 0, "{}: no row before an error", R::NAME),
@@ -85,7 +89,11 @@ fn scene<N: Scalar>(data: &[u8], q16: bool) {
         width: 1 + (b.u8() % 64) as u16,
         height: 1 + (b.u8() % 64) as u16,
         subpixel_bits: b.u8() % 10, // 0 and 9 are invalid on purpose
-        cull: if mode & 2 == 0 { Cull::None } else { Cull::Back },
+        cull: if mode & 2 == 0 {
+            Cull::None
+        } else {
+            Cull::Back
+        },
         ..Config::screen(1, 1)
     };
     let nv = (b.u8() % 17) as usize;
@@ -101,7 +109,13 @@ fn scene<N: Scalar>(data: &[u8], q16: bool) {
         .collect();
     let faces: Vec<Face> = indices
         .iter()
-        .map(|i| Face::translucent(i, Rgb565::new(b.u8() & 31, b.u8() & 63, b.u8() & 31), b.u8()))
+        .map(|i| {
+            Face::translucent(
+                i,
+                Rgb565::new(b.u8() & 31, b.u8() & 63, b.u8() & 31),
+                b.u8(),
+            )
+        })
         .collect();
     let mesh = Mesh::new(&vertices, &faces);
     if mode & 1 == 0 {
@@ -131,13 +145,22 @@ fn scene<N: Scalar>(data: &[u8], q16: bool) {
                 *c = f(&mut b);
             }
         }
-        let Some(transform) = Affine::from_f32(m) else { return };
-        let objects = [Object { mesh: &mesh, transform }];
+        let Some(transform) = Affine::from_f32(m) else {
+            return;
+        };
+        let objects = [Object {
+            mesh: &mesh,
+            transform,
+        }];
         let light = Light {
             direction: Vec3::new(value(&mut b, q16), value(&mut b, q16), value(&mut b, q16)),
             ambient: value(&mut b, q16),
         };
-        let scene = ModelScene { objects: &objects, camera, light };
+        let scene = ModelScene {
+            objects: &objects,
+            camera,
+            light,
+        };
         every_method::<N>(&scene, &cfg);
     }
 }
