@@ -212,7 +212,7 @@ impl<N: zrow::Scalar> Methods<N> {
 
     /// RAM of the renderer that draws with `algo` (its `RAM_BYTES`).
     pub fn ram_bytes(algo: Algo) -> usize {
-        match algo.resolve() {
+        match algo {
             // The window draws `auto` with the scan-line method (it does not analyse the
             // scene's structure; `zrow-sim render`/`render-model` do), and never offers
             // auto's own choices.
@@ -298,7 +298,7 @@ where
     D: DrawTarget<Color = Rgb565>,
     D::Error: core::fmt::Debug,
 {
-    match view.algo().resolve() {
+    match view.algo() {
         // `auto` in the window: the scan-line method (see `Methods::ram_bytes`).
         Algo::Scanline | Algo::Auto | Algo::CullOnly | Algo::Ordered => {
             render_with(made(&mut m.scanline), view, model, display)

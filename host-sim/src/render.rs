@@ -103,12 +103,6 @@ impl Algo {
         ("auto", Algo::Auto),
     ];
 
-    /// The method a name other than `auto` stands for (itself); `auto` is chosen per scene by
-    /// [`choose`], from the scene's structure.
-    pub fn resolve(self) -> Algo {
-        self
-    }
-
     /// The method called `name`, if there is one.
     pub fn from_name(name: &str) -> Option<Self> {
         Self::ALL.iter().find(|(n, _)| *n == name).map(|&(_, a)| a)

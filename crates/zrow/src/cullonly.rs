@@ -28,10 +28,10 @@
 use crate::error::RenderError;
 use crate::method::{FrameStats, Renderer};
 use crate::number::Scalar;
-use crate::polygons::{paint_span, PolygonTable};
+use crate::polygons::{paint_in_order, PolygonTable};
 use crate::raster::Config;
 use crate::scene::Scene;
-use crate::sink::{Row, RowSink};
+use crate::sink::RowSink;
 use embedded_graphics_core::pixelcolor::Rgb565;
 
 /// The cull-only renderer: rows of `W` pixels, `P` polygons, `E` edges.
@@ -74,24 +74,15 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize> CullOnly<N, W, P
             edges: self.table.edge_count() as u32,
             ..FrameStats::default()
         };
-        let w = cfg.width as usize;
-        for y in 0..cfg.height as i32 {
-            let (depth, intensity) = (&mut self.depth[..w], &mut self.intensity[..w]);
-            depth.fill(N::MAX);
-            intensity.fill(cfg.background);
-            for (i, p) in self.table.polygons().iter().enumerate() {
-                if (p.first_row as i32..=p.last_row as i32).contains(&y) {
-                    let (xl, xr) = self.table.span(i, y);
-                    paint_span(depth, intensity, &p.plane, p.color, y, xl, xr);
-                }
-            }
-            sink.write_row(&Row {
-                y: y as u16,
-                intensity,
-                depth,
-            })
-            .map_err(RenderError::Sink)?;
-        }
+        paint_in_order(
+            &self.table,
+            0..self.table.len(),
+            cfg,
+            &mut self.depth,
+            &mut self.intensity,
+            sink,
+        )
+        .map_err(RenderError::Sink)?;
         Ok(stats)
     }
 }

@@ -24,10 +24,10 @@
 use crate::error::RenderError;
 use crate::method::{FrameStats, Renderer};
 use crate::number::Scalar;
-use crate::polygons::{paint_span, PolygonTable};
+use crate::polygons::{paint_in_order, PolygonTable};
 use crate::raster::Config;
 use crate::scene::Scene;
-use crate::sink::{Row, RowSink};
+use crate::sink::RowSink;
 use embedded_graphics_core::pixelcolor::Rgb565;
 use heapless::Vec;
 
@@ -155,25 +155,15 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize> Ordered<N, W, P,
             edges: self.table.edge_count() as u32,
             ..FrameStats::default()
         };
-        let w = cfg.width as usize;
-        for y in 0..cfg.height as i32 {
-            let (depth, intensity) = (&mut self.depth[..w], &mut self.intensity[..w]);
-            depth.fill(N::MAX);
-            intensity.fill(cfg.background);
-            for &i in &self.order {
-                let p = self.table.get(i as usize);
-                if (p.first_row as i32..=p.last_row as i32).contains(&y) {
-                    let (xl, xr) = self.table.span(i as usize, y);
-                    paint_span(depth, intensity, &p.plane, p.color, y, xl, xr);
-                }
-            }
-            sink.write_row(&Row {
-                y: y as u16,
-                intensity,
-                depth,
-            })
-            .map_err(RenderError::Sink)?;
-        }
+        paint_in_order(
+            &self.table,
+            self.order.iter().map(|&i| i as usize),
+            cfg,
+            &mut self.depth,
+            &mut self.intensity,
+            sink,
+        )
+        .map_err(RenderError::Sink)?;
         Ok(stats)
     }
 }

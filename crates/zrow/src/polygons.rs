@@ -22,6 +22,7 @@ use crate::error::{Error, Table};
 use crate::number::{DepthPlane, Scalar};
 use crate::raster::{setup, signed_area2, Config, Cull, Edge, Side};
 use crate::scene::Scene;
+use crate::sink::{Row, RowSink};
 use embedded_graphics_core::pixelcolor::Rgb565;
 use heapless::Vec;
 
@@ -321,6 +322,39 @@ pub fn paint_span<N: Scalar>(
         z = z.step(plane.dzdx, 1);
     }
     intensity[x0 as usize..x1 as usize].fill(color);
+}
+
+/// Paints and sends every row, top to bottom, with no depth test: in each row the polygons of
+/// `order` that cross it, in that order, each over the ones before (the depth row still gets
+/// each painted pixel's depth). For the methods whose order alone is exact
+/// ([`crate::cullonly`], [`crate::ordered`]).
+pub fn paint_in_order<N: Scalar, const P: usize, const E: usize, K: RowSink<N>>(
+    t: &PolygonTable<N, P, E>,
+    order: impl Iterator<Item = usize> + Clone,
+    cfg: &Config,
+    depth: &mut [N],
+    intensity: &mut [Rgb565],
+    sink: &mut K,
+) -> Result<(), K::Error> {
+    let w = (cfg.width as usize).min(depth.len()).min(intensity.len());
+    let (depth, intensity) = (&mut depth[..w], &mut intensity[..w]);
+    for y in 0..cfg.height as i32 {
+        depth.fill(N::MAX);
+        intensity.fill(cfg.background);
+        for i in order.clone() {
+            let Some(p) = t.polys.get(i) else { continue };
+            if (p.first_row as i32..=p.last_row as i32).contains(&y) {
+                let (xl, xr) = t.span(i, y);
+                paint_span(depth, intensity, &p.plane, p.color, y, xl, xr);
+            }
+        }
+        sink.write_row(&Row {
+            y: y as u16,
+            intensity,
+            depth,
+        })?;
+    }
+    Ok(())
 }
 
 #[cfg(test)]
