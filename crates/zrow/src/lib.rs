@@ -49,12 +49,16 @@ pub mod method;
 pub mod number;
 /// The polygon table methods that revisit polygons keep, with exact sample queries.
 pub mod polygons;
+/// Named configurations trading speed for accuracy.
+pub mod presets;
 /// Snapped polygons, the exact edge walk, polygon setup.
 pub mod raster;
 /// Capacities a scene needs.
 pub mod requirements;
 /// Meshes, objects, camera, light; screen-space scenes.
 pub mod scene;
+/// Depth cueing: intensity by distance, affine or perspective-correct.
+pub mod shading;
 /// Where rows go.
 pub mod sink;
 /// What a mesh's structure allows (one closed convex solid?).
@@ -85,7 +89,7 @@ pub mod warnock;
 pub mod zbuffer;
 
 pub use error::{Error, RenderError, Table};
-pub use math::{Affine, Vec3};
+pub use math::{Affine, MathLib, Vec3};
 pub use method::{FrameStats, Renderer};
 pub use number::{Scalar, Q16_16};
 pub use raster::{Config, Cull};

@@ -345,6 +345,7 @@ pub fn paint_rows<N: Scalar, K: RowSink<N>, const P: usize, const E: usize, cons
     pieces: &Pieces<N, Q>,
     order: &[u16],
     cfg: &Config,
+    cue: &Option<crate::shading::Cue<N>>,
     depth: &mut [N],
     intensity: &mut [embedded_graphics_core::pixelcolor::Rgb565],
     sink: &mut K,
@@ -370,6 +371,7 @@ pub fn paint_rows<N: Scalar, K: RowSink<N>, const P: usize, const E: usize, cons
                 xr,
             );
         }
+        crate::shading::Cue::shade_row_if_perspective(cue, &depth[..w], &mut intensity[..w]);
         sink.write_row(&Row {
             y: y as u16,
             intensity: &intensity[..w],
