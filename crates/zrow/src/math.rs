@@ -51,7 +51,7 @@ impl MathLib {
         match self {
             MathLib::Micromath => {
                 let v = x.to_f32();
-                if !(v > 0.0) {
+                if v.is_nan() || v <= 0.0 {
                     return N::ZERO;
                 }
                 N::from_f32(micromath::F32Ext::sqrt(v)).unwrap_or(N::ZERO)

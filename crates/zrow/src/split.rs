@@ -340,6 +340,7 @@ impl<N: Scalar, const Q: usize> Pieces<N, Q> {
 
 /// Paints pieces in `order` (first = farthest) row by row — the painter's algorithm with one
 /// row of memory — and sends each row to `sink`, top to bottom.
+#[allow(clippy::too_many_arguments)] // the frame's inputs and the row buffers, each used once
 pub fn paint_rows<N: Scalar, K: RowSink<N>, const P: usize, const E: usize, const Q: usize>(
     t: &PolygonTable<N, P, E>,
     pieces: &Pieces<N, Q>,
