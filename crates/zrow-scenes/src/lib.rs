@@ -133,6 +133,7 @@ pub fn mesh<N: Format>(name: &str) -> Option<Mesh<'static, N>> {
         "random400" => (N::random400(), &meshes::RANDOM400_FACES),
         "foley100" => (N::foley100(), &meshes::FOLEY100_FACES),
         "foley2500" => (N::foley2500(), &meshes::FOLEY2500_FACES),
+        "ring" => (N::ring(), &meshes::RING_FACES),
         _ => return None,
     };
     Some(Mesh::new(vertices, faces))
