@@ -2,8 +2,9 @@
 //! emulated Cortex-M benches and on the board.
 //!
 //! Meshes are generated once by `build.rs` and compiled in as `static` arrays, so on a
-//! microcontroller they stay in flash: positions in both number formats (the [`Format`] trait
-//! picks the right array), faces as static index slices with a colour each.
+//! microcontroller they stay in flash: positions in every number format — f32, [`Q16_16`] and
+//! [`Q24_8`], the fixed ones rounded to the nearest LSB (the [`Format`] trait picks the right
+//! array) — and faces as static index slices with a colour each.
 //!
 //! | name | mode | faces |
 //! |---|---|---|
@@ -16,7 +17,8 @@
 //! and two wavy sheets cutting through them and each other, tessellated into 100 and 2,500
 //! triangles by zrow-compare's generator (`crates/zrow-compare/src/surfaces.rs`, included by
 //! `build.rs`), at 240 × 240. Positions are on a 1/256-pixel grid (depth 1/1024), so their f32
-//! and Q16.16 versions are the same numbers.
+//! and Q16.16 versions are the same numbers; Q24.8 keeps x and y exactly and rounds depth to
+//! the nearest 1/256.
 //!
 //! Demo scenes ([`DEMOS`], for the simulator window and the board): `interlocked` — two
 //! 256-triangle rings linked through each other and a cube piercing both, turning, so hidden
@@ -46,7 +48,7 @@ use zrow::presets::Preset;
 use zrow::shading::{DepthCue, Interpolation};
 use zrow::{
     Affine, Camera, Config, Face, Light, MathLib, Mesh, ModelScene, Object, Scalar, Scene,
-    ScreenScene, Vec3, Q16_16,
+    ScreenScene, Vec3, Q16_16, Q24_8,
 };
 
 mod meshes {
@@ -122,6 +124,27 @@ impl Format for Q16_16 {
     }
     fn foley2500() -> &'static [Vec3<Q16_16>] {
         &meshes::FOLEY2500_Q16_16
+    }
+}
+
+impl Format for Q24_8 {
+    fn cube() -> &'static [Vec3<Q24_8>] {
+        &meshes::CUBE_Q24_8
+    }
+    fn torus() -> &'static [Vec3<Q24_8>] {
+        &meshes::TORUS_Q24_8
+    }
+    fn random400() -> &'static [Vec3<Q24_8>] {
+        &meshes::RANDOM400_Q24_8
+    }
+    fn ring() -> &'static [Vec3<Q24_8>] {
+        &meshes::RING_Q24_8
+    }
+    fn foley100() -> &'static [Vec3<Q24_8>] {
+        &meshes::FOLEY100_Q24_8
+    }
+    fn foley2500() -> &'static [Vec3<Q24_8>] {
+        &meshes::FOLEY2500_Q24_8
     }
 }
 

@@ -45,7 +45,7 @@ pub mod geometry;
 pub mod math;
 /// The interface every hidden-surface method implements.
 pub mod method;
-/// Number formats: [`Q16_16`] and `f32` behind one trait.
+/// Number formats: [`Q16_16`], [`Q24_8`] and `f32` behind one trait.
 pub mod number;
 /// The polygon table methods that revisit polygons keep, with exact sample queries.
 pub mod polygons;
@@ -91,7 +91,7 @@ pub mod zbuffer;
 pub use error::{Error, RenderError, Table};
 pub use math::{Affine, MathLib, Vec3};
 pub use method::{FrameStats, Renderer};
-pub use number::{Scalar, Q16_16};
+pub use number::{Scalar, Q16_16, Q24_8};
 pub use raster::{Config, Cull};
 pub use requirements::{requirements, Requirements};
 pub use scanline::Scanline;
