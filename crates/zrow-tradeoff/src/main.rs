@@ -55,8 +55,7 @@ impl Row {
     }
     /// Mean host time per frame, µs.
     pub fn host_us(&self) -> f64 {
-        self.scenes.iter().map(|s| s.2.as_secs_f64()).sum::<f64>() / self.scenes.len() as f64
-            * 1e6
+        self.scenes.iter().map(|s| s.2.as_secs_f64()).sum::<f64>() / self.scenes.len() as f64 * 1e6
     }
     /// Mean pixels in error per frame.
     pub fn error_pixels(&self) -> f64 {
@@ -196,7 +195,11 @@ fn report(rows: &[Row], emu: &std::path::Path, quick: bool) -> String {
          VM vary about ±30 % between runs). M4: QEMU mps2-an386 instruction counts from `{}` \
          (instructions, not cycles). Error: against an exact f64 reference (exact trig, no \
          snapping), dEQP three-state coverage with a tolerance of one sub-pixel.\n",
-        if quick { " — QUICK RUN: one scene, short timing, not a measurement" } else { "" },
+        if quick {
+            " — QUICK RUN: one scene, short timing, not a measurement"
+        } else {
+            ""
+        },
         zrow_scenes::PRESET_SCENES.join(", "),
         zrow_scenes::PRESET_CUE,
         emu.display()
@@ -236,7 +239,13 @@ fn report(rows: &[Row], emu: &std::path::Path, quick: bool) -> String {
     let _ = writeln!(s, "| preset | format / sub-pixel bits / depth store / depth mapping / maths / intensity | what for |");
     let _ = writeln!(s, "|---|---|---|");
     for r in rows {
-        let _ = writeln!(s, "| `{}` | {} | {} |", r.preset.name, knobs(&r.preset), r.preset.summary);
+        let _ = writeln!(
+            s,
+            "| `{}` | {} | {} |",
+            r.preset.name,
+            knobs(&r.preset),
+            r.preset.summary
+        );
     }
     let _ = writeln!(s, "\n## Per scene\n");
     let _ = writeln!(s, "| preset | scene | M4 instr. | host µs | missing | extra | wrong surface | depth max / mean (LSB) | intensity max / mean (LSB) | intensity > 2 LSB |");
@@ -275,7 +284,10 @@ fn report(rows: &[Row], emu: &std::path::Path, quick: bool) -> String {
         measure::FAR_W,
         measure::PLANE_W
     );
-    let _ = writeln!(s, "| preset | theory Δw | measured Δw | measured / theory | coordinate quantum |");
+    let _ = writeln!(
+        s,
+        "| preset | theory Δw | measured Δw | measured / theory | coordinate quantum |"
+    );
     let _ = writeln!(s, "|---|---|---|---|---|");
     for r in rows {
         let t = &r.threshold;

@@ -7,7 +7,9 @@ use embedded_graphics_core::pixelcolor::RgbColor;
 use zrow::geometry::DepthMapping;
 use zrow::presets::{DepthStore, Format, Preset};
 use zrow::shading::Shading;
-use zrow::{Camera, Config, Face, Light, Mesh, ModelScene, Object, Scalar, Scene, ScreenScene, Vec3};
+use zrow::{
+    Camera, Config, Face, Light, Mesh, ModelScene, Object, Scalar, Scene, ScreenScene, Vec3,
+};
 use zrow_scenes::{FOV_Y, PRESET_CUE};
 
 /// Errors of one frame.
@@ -79,7 +81,8 @@ pub fn errors(p: &Preset, scene: &RefScene, refp: &[Pixel], got: &Rendered) -> E
                 continue;
             }
             // Right surface: depth and intensity.
-            let z_exact = reference::depth_of(r.w, scene.near_far, p.depth == DepthMapping::LinearW);
+            let z_exact =
+                reference::depth_of(r.w, scene.near_far, p.depth == DepthMapping::LinearW);
             let z = got.frame.depth[k];
             let lsb = depth_lsb(p.format, z_exact);
             let dz = ((z - z_exact) / lsb).abs();
@@ -133,7 +136,10 @@ impl Build for FanTriangle<'_> {
             .iter()
             .filter_map(|p| Vec3::from_f32([p[0] as f32, p[1] as f32, 1.0]))
             .collect();
-        let faces = [Face::new(&[0, 1, 2], embedded_graphics_core::pixelcolor::Rgb565::WHITE)];
+        let faces = [Face::new(
+            &[0, 1, 2],
+            embedded_graphics_core::pixelcolor::Rgb565::WHITE,
+        )];
         f(&ScreenScene {
             mesh: Mesh::new(&v, &faces),
         });
@@ -282,7 +288,10 @@ pub fn threshold(p: &Preset) -> Result<Threshold, String> {
         Format::Q24_8 => 2f64.powi(-8),
         Format::F32 => 2f64.powi(PLANE_W.log2().floor() as i32 - 23),
     };
-    let mut cfg = p.config(Config::model(render::SIZE as u16, render::SIZE as u16), PRESET_CUE);
+    let mut cfg = p.config(
+        Config::model(render::SIZE as u16, render::SIZE as u16),
+        PRESET_CUE,
+    );
     cfg.shading = Shading::Flat;
     let cam = Cam::look_at([0.0; 3], [0.0, 0.0, -1.0], FOV_Y as f64, [n, f]);
     let half = 1.5 / PLANE_W * cam.focal * render::SIZE as f64 / 2.0;

@@ -87,7 +87,12 @@ pub struct Cam {
 impl Cam {
     /// The model scenes' camera.
     pub fn scenes() -> Cam {
-        Self::look_at(EYE.map(f64::from), [0.0; 3], FOV_Y as f64, NEAR_FAR.map(f64::from))
+        Self::look_at(
+            EYE.map(f64::from),
+            [0.0; 3],
+            FOV_Y as f64,
+            NEAR_FAR.map(f64::from),
+        )
     }
     /// A look-at camera, y up.
     pub fn look_at(eye: [f64; 3], target: [f64; 3], fov: f64, nf: [f64; 2]) -> Cam {
@@ -214,7 +219,9 @@ pub fn build(objs: &[Obj<'_>], cam: &Cam, light: ([f64; 3], f64), size: usize) -
                 })
                 .collect();
             // 1/w is affine in screen space: the plane through three vertices.
-            let q: Vec<[f64; 3]> = (0..3).map(|k| [xy[k][0], xy[k][1], -1.0 / v[k][2]]).collect();
+            let q: Vec<[f64; 3]> = (0..3)
+                .map(|k| [xy[k][0], xy[k][1], -1.0 / v[k][2]])
+                .collect();
             let nrm = cross(sub(q[1], q[0]), sub(q[2], q[0]));
             let (a, b) = (-nrm[0] / nrm[2], -nrm[1] / nrm[2]);
             let c = q[0][2] - a * q[0][0] - b * q[0][1];

@@ -35,7 +35,11 @@ impl<N: Scalar> RowSink<N> for Capture<'_> {
         let w = row.intensity.len();
         self.0.colour[y * w..(y + 1) * w].copy_from_slice(row.intensity);
         for (d, &z) in self.0.depth[y * w..(y + 1) * w].iter_mut().zip(row.depth) {
-            *d = if z == N::MAX { f64::INFINITY } else { z.to_f64() };
+            *d = if z == N::MAX {
+                f64::INFINITY
+            } else {
+                z.to_f64()
+            };
         }
         Ok(())
     }
