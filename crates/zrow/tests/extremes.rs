@@ -133,7 +133,11 @@ fn e02_samples_on_edges_and_vertices() {
 fn random_triangles<N: Scalar>() {
     let cfg = Config::screen(24, 24);
     let mut rng = Rng(3);
-    let first = if fixed_lsb::<N>().is_some() { 10_000 } else { 2_000 };
+    let first = if fixed_lsb::<N>().is_some() {
+        10_000
+    } else {
+        2_000
+    };
     for (k, m) in all_methods::<N>().iter_mut().enumerate() {
         for _ in 0..if k == 0 { first } else { 400 } {
             let g = |r: &mut Rng| (r.f(-4.0, 28.0) * 256.0).round() / 256.0;
@@ -238,20 +242,28 @@ fn fan(centre: [f32; 2], radius: f32, coarse: f32, rng: &mut Rng) -> Vec<Vec<[f3
 fn watertight<N: Scalar>(centre: [f32; 2], radius: f32, seed: u64, coarse: f32) {
     let cfg = Config::screen(64, 64);
     for (k, m) in all_methods::<N>().iter_mut().enumerate() {
-        let c = if k == 0 { (coarse / 12.0).max(1.0) } else { coarse };
+        let c = if k == 0 {
+            (coarse / 12.0).max(1.0)
+        } else {
+            coarse
+        };
         let mut tris = fan(centre, radius, c, &mut Rng(seed));
         // Triangles whose bounding box misses the screen: one in 32 is drawn (it must draw
         // nothing), the rest are left out to save time.
         let mut k = 0;
         tris.retain(|t| {
-            let misses = [0, 1].iter().any(|&a| {
-                t.iter().all(|v| v[a] < -1.0) || t.iter().all(|v| v[a] > 65.0)
-            });
+            let misses = [0, 1]
+                .iter()
+                .any(|&a| t.iter().all(|v| v[a] < -1.0) || t.iter().all(|v| v[a] > 65.0));
             k += 1;
             !misses || k % 32 == 0
         });
         let counts = coverage_counts_with(m, &tris, &cfg);
-        assert!(counts.iter().all(|&c| c <= 1), "{}: a pixel drawn twice", m.name);
+        assert!(
+            counts.iter().all(|&c| c <= 1),
+            "{}: a pixel drawn twice",
+            m.name
+        );
         // Inside the rim polygon (shrunk by the chords' sagitta and a pixel), every pixel once.
         let rim_inner = radius - 0.5 * (8.0 * c).powi(2) / radius - 1.0;
         for y in 0..64 {
@@ -462,7 +474,11 @@ fn same_renderer_twice<N: Scalar>() {
         vec![[1.0, 1.0, 3.0], [30.0, 4.0, 1.0], [9.0, 28.0, 9.0]],
         vec![[2.0, 25.0, 0.5], [28.0, 2.0, 7.0], [31.0, 31.0, 2.0]],
     ]);
-    let other = Polys::new(vec![vec![[0.0, 0.0, 0.0], [32.0, 0.0, 1.0], [0.0, 32.0, 2.0]]]);
+    let other = Polys::new(vec![vec![
+        [0.0, 0.0, 0.0],
+        [32.0, 0.0, 1.0],
+        [0.0, 32.0, 2.0],
+    ]]);
     let cfg = Config::screen(32, 32);
     for m in &mut every_method::<N>() {
         let a = m.polys_full(&p, &cfg).unwrap();
@@ -614,7 +630,9 @@ fn near_plane_scene<N: Scalar>(m: &mut Method<N>, tri: [[f32; 3]; 3]) -> Capture
     .unwrap();
     let mut cfg = Config::model(48, 48);
     cfg.cull = zrow::Cull::None;
-    with_model(&verts, &faces, camera, |s| m.scene(s, &cfg)).unwrap().0
+    with_model(&verts, &faces, camera, |s| m.scene(s, &cfg))
+        .unwrap()
+        .0
 }
 
 // 14. Near plane: 1, 2 or 3 vertices behind the eye, and w → 0⁺: only w > 0 drawn, no NaN.
@@ -633,10 +651,7 @@ fn near_plane<N: Scalar>() {
     ];
     let mut methods = all_methods::<N>();
     let count = methods.len();
-    for (tri, m) in cases
-        .iter()
-        .flat_map(|t| (0..count).map(move |k| (*t, k)))
-    {
+    for (tri, m) in cases.iter().flat_map(|t| (0..count).map(move |k| (*t, k))) {
         let m = &mut methods[m];
         let cap = near_plane_scene::<N>(m, tri);
         // Ray-cast reference in f64: the pixel's ray hits the triangle at distance > near.

@@ -449,7 +449,8 @@ pub mod scenes {
 /// tiled 16-bit z-buffer's [`zrow::tiled::Quantisation::resolution`]).
 pub type Rendered<N> = (Capture<N>, zrow::FrameStats, f64);
 
-type RenderFn<N> = Box<dyn FnMut(&dyn zrow::Scene<N>, &Config) -> Result<Rendered<N>, zrow::RenderError<()>>>;
+type RenderFn<N> =
+    Box<dyn FnMut(&dyn zrow::Scene<N>, &Config) -> Result<Rendered<N>, zrow::RenderError<()>>>;
 
 /// One hidden-surface method, boxed once and reused for every frame it renders (as on the
 /// device), behind one signature whatever its type and capacities.
@@ -603,4 +604,42 @@ pub fn with_model<N: Scalar, T>(
         camera,
         light,
     })
+}
+
+/// Ray–triangle intersection in f64 (Möller–Trumbore): the distance along `dir` from the
+/// origin at which the ray meets `tri`, if it does (either side).
+pub fn ray_hits(tri: &[[f64; 3]; 3], dir: [f64; 3]) -> Option<f64> {
+    let v = tri;
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let cr = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let (e1, e2) = (sub(v[1], v[0]), sub(v[2], v[0]));
+    let p = cr(dir, e2);
+    let det = dot(e1, p);
+    if det.abs() < 1e-300 {
+        return None;
+    }
+    let s = sub([0.0; 3], v[0]);
+    let u = dot(s, p) / det;
+    let q = cr(s, e1);
+    let w = dot(dir, q) / det;
+    let t = dot(e2, q) / det;
+    (u >= 0.0 && w >= 0.0 && u + w <= 1.0).then_some(t)
+}
+
+/// The view-space direction of the ray through point (`x`, `y`) of a `w`×`h` screen, for a
+/// camera at the origin looking down −z with `focal` = cot(fov_y/2) (square pixels).
+pub fn ray_dir(x: f64, y: f64, w: f64, h: f64, focal: f64) -> [f64; 3] {
+    let aspect = w / h;
+    [
+        (2.0 * x / w - 1.0) * aspect / focal,
+        (1.0 - 2.0 * y / h) / focal,
+        -1.0,
+    ]
 }
