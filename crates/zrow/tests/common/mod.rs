@@ -443,3 +443,203 @@ pub mod scenes {
         ])
     }
 }
+
+/// What one render gives back: the frame, the method's statistics, and the depth resolution
+/// the method claims for that frame beyond its number format's own (0 for exact methods; the
+/// tiled 16-bit z-buffer's [`zrow::tiled::Quantisation::resolution`]).
+pub type Rendered<N> = (Capture<N>, zrow::FrameStats, f64);
+
+type RenderFn<N> =
+    Box<dyn FnMut(&dyn zrow::Scene<N>, &Config) -> Result<Rendered<N>, zrow::RenderError<()>>>;
+
+/// One hidden-surface method, boxed once and reused for every frame it renders (as on the
+/// device), behind one signature whatever its type and capacities.
+pub struct Method<N: Scalar> {
+    pub name: &'static str,
+    render: RenderFn<N>,
+}
+
+impl<N: Scalar> Method<N> {
+    /// Any method; its resolution beyond the format's is 0 (exact).
+    pub fn new<R: Renderer<N> + Default + 'static>() -> Self {
+        let mut r = Box::<R>::default();
+        Method {
+            name: R::NAME,
+            render: Box::new(move |scene, cfg| {
+                let mut cap = Capture::new(cfg.width as usize, cfg.height as usize);
+                let stats = r.render(scene, cfg, &mut cap)?;
+                Ok((cap, stats, 0.0))
+            }),
+        }
+    }
+
+    /// The tiled 16-bit z-buffer, reporting its frame's quantisation resolution.
+    pub fn tiled<const W: usize, const B: usize, const P: usize, const E: usize>() -> Self {
+        let mut r = Box::<zrow::tiled::Tiled<N, W, B, P, E>>::default();
+        Method {
+            name: "tiled",
+            render: Box::new(move |scene, cfg| {
+                let mut cap = Capture::new(cfg.width as usize, cfg.height as usize);
+                let stats = r.render(scene, cfg, &mut cap)?;
+                Ok((cap, stats, r.quantisation().resolution))
+            }),
+        }
+    }
+
+    /// Renders any scene (screen space or model).
+    pub fn scene(
+        &mut self,
+        scene: &dyn zrow::Scene<N>,
+        cfg: &Config,
+    ) -> Result<Rendered<N>, zrow::RenderError<()>> {
+        (self.render)(scene, cfg)
+    }
+
+    /// Renders owned screen-space polygons (polygon `i` in [`color_of`]`(i)`).
+    pub fn polys(&mut self, p: &Polys, cfg: &Config) -> Result<Capture<N>, zrow::RenderError<()>> {
+        self.polys_full(p, cfg).map(|r| r.0)
+    }
+
+    /// As [`Method::polys`], with statistics and resolution.
+    pub fn polys_full(
+        &mut self,
+        p: &Polys,
+        cfg: &Config,
+    ) -> Result<Rendered<N>, zrow::RenderError<()>> {
+        p.with_scene(|s| (self.render)(s, cfg))
+    }
+}
+
+/// Every method that must draw any opaque scene as the exact reference does, at capacities
+/// for frames up to 64×64 and 256 polygons: scan-line, z-buffer, tiled 16-bit z-buffer (exact
+/// beyond its resolution), depth-sort, Warnock, BSP, A-buffer.
+pub fn every_method<N: Scalar>() -> Vec<Method<N>> {
+    vec![
+        Method::new::<Scanline<N, 64, 256, 1024, 256>>(),
+        Method::new::<zrow::ZBuffer<N, 64, 64>>(),
+        Method::tiled::<64, 8, 256, 1024>(),
+        Method::new::<zrow::depthsort::DepthSort<N, 64, 256, 1024, 4096>>(),
+        Method::new::<zrow::warnock::Warnock<N, 64, 16, 256, 1024, 4096>>(),
+        Method::new::<zrow::bsp::Bsp<N, 64, 256, 1024, 4096, 512>>(),
+        Method::new::<zrow::abuffer::ABuffer<N, 64, 256, 1024, 64>>(),
+    ]
+}
+
+/// The methods exact only under a precondition (cull-only: no two polygons share a sample;
+/// ordered: no two polygons sharing a sample overlap in depth), same capacities. A scene of
+/// one polygon meets both.
+pub fn painters<N: Scalar>() -> Vec<Method<N>> {
+    vec![
+        Method::new::<zrow::cullonly::CullOnly<N, 64, 256, 1024>>(),
+        Method::new::<zrow::ordered::Ordered<N, 64, 256, 1024>>(),
+    ]
+}
+
+/// [`every_method`] and [`painters`]: for scenes of one polygon (coverage items).
+pub fn all_methods<N: Scalar>() -> Vec<Method<N>> {
+    let mut m = every_method::<N>();
+    m.extend(painters::<N>());
+    m
+}
+
+/// Per-pixel count of how many of `polys`, each drawn alone by `m`, cover it.
+pub fn coverage_counts_with<N: Scalar>(
+    m: &mut Method<N>,
+    polys: &[Vec<[f32; 3]>],
+    cfg: &Config,
+) -> Vec<u32> {
+    let mut n = vec![0u32; cfg.width as usize * cfg.height as usize];
+    for p in polys {
+        let cap = m.polys(&Polys::new(vec![p.clone()]), cfg).unwrap();
+        for (k, c) in cap.color.iter().enumerate() {
+            n[k] += (*c != Rgb565::BLACK) as u32;
+        }
+    }
+    n
+}
+
+/// The largest `f32` the format holds (for f32 itself, `f32::MAX`).
+pub fn max_f32<N: Scalar>() -> f32 {
+    let m = N::MAX.to_f32();
+    if N::from_f32(m).is_some() {
+        m
+    } else {
+        f32::from_bits(m.to_bits() - 1)
+    }
+}
+
+/// The format's least significant bit if it is fixed point (`None` for floating point).
+pub fn fixed_lsb<N: Scalar>() -> Option<f64> {
+    let m = N::MAX.to_f64();
+    let lsb = m.ceil() - m;
+    (lsb > 0.0).then_some(lsb)
+}
+
+/// One unit in the last place of the format at `z`: the fixed LSB, or f32's ulp at |z|.
+pub fn lsb_at<N: Scalar>(z: f64) -> f64 {
+    fixed_lsb::<N>().unwrap_or_else(|| {
+        let a = (z.abs() as f32).max(f32::MIN_POSITIVE);
+        (f32::from_bits(a.to_bits() + 1) - a) as f64
+    })
+}
+
+/// A model scene of one mesh at the origin, full ambient light (faces keep their colours).
+pub fn with_model<N: Scalar, T>(
+    vertices: &[Vec3<N>],
+    faces: &[Face],
+    camera: Camera<N>,
+    f: impl FnOnce(&ModelScene<'_, N>) -> T,
+) -> T {
+    let mesh = Mesh::new(vertices, faces);
+    let objects = [Object {
+        mesh: &mesh,
+        transform: Affine::identity(),
+    }];
+    let light = Light {
+        direction: Vec3::from_f32([0.0, 1.0, 0.0]).unwrap(),
+        ambient: N::ONE,
+    };
+    f(&ModelScene {
+        objects: &objects,
+        camera,
+        light,
+    })
+}
+
+/// Ray–triangle intersection in f64 (Möller–Trumbore): the distance along `dir` from the
+/// origin at which the ray meets `tri`, if it does (either side).
+pub fn ray_hits(tri: &[[f64; 3]; 3], dir: [f64; 3]) -> Option<f64> {
+    let v = tri;
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let cr = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let (e1, e2) = (sub(v[1], v[0]), sub(v[2], v[0]));
+    let p = cr(dir, e2);
+    let det = dot(e1, p);
+    if det.abs() < 1e-300 {
+        return None;
+    }
+    let s = sub([0.0; 3], v[0]);
+    let u = dot(s, p) / det;
+    let q = cr(s, e1);
+    let w = dot(dir, q) / det;
+    let t = dot(e2, q) / det;
+    (u >= 0.0 && w >= 0.0 && u + w <= 1.0).then_some(t)
+}
+
+/// The view-space direction of the ray through point (`x`, `y`) of a `w`×`h` screen, for a
+/// camera at the origin looking down −z with `focal` = cot(fov_y/2) (square pixels).
+pub fn ray_dir(x: f64, y: f64, w: f64, h: f64, focal: f64) -> [f64; 3] {
+    let aspect = w / h;
+    [
+        (2.0 * x / w - 1.0) * aspect / focal,
+        (1.0 - 2.0 * y / h) / focal,
+        -1.0,
+    ]
+}
