@@ -120,10 +120,10 @@ fn run() -> Result<(), String> {
         let mut ram = 0;
         for &name in scenes {
             let key = (name, p.subpixel_bits);
-            if !refs.contains_key(&key) {
+            if let std::collections::btree_map::Entry::Vacant(v) = refs.entry(key) {
                 let r = measure::reference_of(name, p.subpixel_bits)
                     .ok_or(format!("no reference for {name}"))?;
-                refs.insert(key, r);
+                v.insert(r);
             }
             let (rs, rp) = &refs[&key];
             let got = render::run(p, name, time_for)?;

@@ -92,8 +92,8 @@ pub fn errors(p: &Preset, scene: &RefScene, refp: &[Pixel], got: &Rendered) -> E
             let px = got.frame.colour[k];
             let gotc = [px.r() as f64, px.g() as f64, px.b() as f64];
             let mut worst: f64 = 0.0;
-            for ch in 0..3 {
-                let d = (gotc[ch] - face.lit[ch] * c).abs();
+            for (g, lit) in gotc.iter().zip(face.lit) {
+                let d = (g - lit * c).abs();
                 worst = worst.max(d);
                 isum += d;
             }

@@ -159,8 +159,11 @@ pub fn run(p: &Preset, name: &str, time_for: Duration) -> Result<Rendered, Strin
     dispatch!(p, scene_run(p, name, time_for))
 }
 
+/// Calls its argument with a scene.
+type WithScene<'a, N> = &'a dyn Fn(&mut dyn FnMut(&dyn Scene<N>));
+
 fn generic_run<N: Scalar, R: Make<N>>(
-    scene: &dyn Fn(&mut dyn FnMut(&dyn Scene<N>)),
+    scene: WithScene<'_, N>,
     cfg: &Config,
     size: usize,
 ) -> Result<Frame, String> {

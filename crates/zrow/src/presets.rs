@@ -4,15 +4,15 @@
 //!
 //! | knob | cheap | accurate |
 //! |---|---|---|
-//! | number format ([`Format`]) | [`Format::Q24_8`] (depth LSB 1/256) | [`Format::Q16_16`], [`Format::F32`] |
-//! | sub-pixel bits ([`Config::subpixel_bits`]) | 4 | 8 |
-//! | depth store ([`DepthStore`]) | 16-bit tiles ([`crate::tiled`]) | 32-bit row ([`crate::Scanline`]) |
-//! | depth mapping ([`DepthMapping`]) | linear in w | affine in 1/w |
-//! | trig and square roots ([`MathLib`]) | micromath | libm |
-//! | intensity ([`Interpolation`]) | affine | perspective-correct |
+//! | number format ([`Format`](crate::presets::Format)) | [`Format::Q24_8`](crate::presets::Format::Q24_8) (depth LSB 1/256) | [`Format::Q16_16`](crate::presets::Format::Q16_16), [`Format::F32`](crate::presets::Format::F32) |
+//! | sub-pixel bits ([`Config::subpixel_bits`](crate::Config::subpixel_bits)) | 4 | 8 |
+//! | depth store ([`DepthStore`](crate::presets::DepthStore)) | 16-bit tiles ([`crate::tiled`]) | 32-bit row ([`crate::Scanline`]) |
+//! | depth mapping ([`DepthMapping`](crate::geometry::DepthMapping)) | linear in w | affine in 1/w |
+//! | trig and square roots ([`MathLib`](crate::math::MathLib)) | micromath | libm |
+//! | intensity ([`Interpolation`](crate::shading::Interpolation)) | affine | perspective-correct |
 //!
 //! The format and the depth store are types (pick the renderer type the preset names); the
-//! rest is [`Preset::config`]. `cargo run --release -p zrow-tradeoff -- --out docs/presets`
+//! rest is [`Preset::config`](crate::presets::Preset::config). `cargo run --release -p zrow-tradeoff -- --out docs/presets`
 //! measures every preset's cost (host time, emulated Cortex-M4 instructions) and error
 //! against an exact reference, and writes the table and plot the README links
 //! (`docs/presets/presets.md`).

@@ -1,22 +1,22 @@
 //! Depth cueing: intensity falling with distance, interpolated affinely or
 //! perspective-correctly — the intensity knob of the presets.
 //!
-//! A face keeps its flat (Lambert) colour; with [`Shading::DepthCue`] each pixel's colour is
+//! A face keeps its flat (Lambert) colour; with [`Shading::DepthCue`](crate::shading::Shading::DepthCue) each pixel's colour is
 //! scaled by a factor that falls linearly with the view distance w, from 1 at `near` to `floor`
 //! at `far` (clamped outside). The factor is an attribute that varies across a polygon, so how
 //! it is interpolated matters:
 //!
-//! - [`Interpolation::PerspectiveCorrect`]: the factor is computed at every pixel from the
+//! - [`Interpolation::PerspectiveCorrect`](crate::shading::Interpolation::PerspectiveCorrect): the factor is computed at every pixel from the
 //!   pixel's own w. Under the default depth mapping stored depth is affine in 1/w, so
 //!   w = k·near / (k − z) follows from the visible depth alone: one division per pixel, done on
-//!   the finished row ([`Cue::shade_row`]), which is why every method supports it. It is exact
+//!   the finished row ([`Cue::shade_row`](crate::shading::Cue::shade_row)), which is why every method supports it. It is exact
 //!   (up to the format's rounding) — the same as interpolating factor/w and 1/w and dividing.
-//! - [`Interpolation::Affine`]: Gouraud's incremental scheme — the factor is exact where each
+//! - [`Interpolation::Affine`](crate::shading::Interpolation::Affine): Gouraud's incremental scheme — the factor is exact where each
 //!   edge first and last crosses a sample row, stepped linearly down the edges and across each
 //!   span in screen space. No division per pixel, but w is not linear in screen space, so a
 //!   polygon receding in depth gets the wrong intensity in between (too dark or too light by
 //!   up to a few percent for the faces of an ordinary scene). Only the scan-line method walks
-//!   edges, so only it offers this; the others return [`Error::Unsupported`].
+//!   edges, so only it offers this; the others return [`Error::Unsupported`](crate::Error::Unsupported).
 //!
 //! Under [`crate::geometry::DepthMapping::LinearW`] the stored depth is itself interpolated
 //! affinely, so "perspective-correct" then inherits its error.
