@@ -110,11 +110,11 @@ awk '
   /^method=/ {
     for (i = 1; i <= NF; i++) { split($i, f, "="); v[f[1]] = f[2] }
     if (!header) {
-      printf "%-10s %-10s %-7s %5s %12s %17s %14s %15s %7s\n", "method", "scene", "format", "tris", "instructions", "est. ms @100 MHz*", "w/o hash ms**", "SPI ms @50 MHz", "ram B"
+      printf "%-20s %-11s %-7s %5s %12s %17s %14s %15s %7s\n", "method", "scene", "format", "tris", "instructions", "est. ms @100 MHz*", "w/o hash ms**", "SPI ms @50 MHz", "ram B"
       header = 1
     }
     # 240x240 RGB565 = 921,600 bits; at 50 MHz: 18.432 ms.
-    printf "%-10s %-10s %-7s %5d %12d %17.1f %14.1f %15.1f %7d\n", v["method"], v["scene"], v["format"], v["tris"], v["instructions"], v["instructions"] / 1e5, (v["instructions"] - sink) / 1e5, 240 * 240 * 16 / 50e6 * 1e3, v["ram"]
+    printf "%-20s %-11s %-7s %5d %12d %17.1f %14.1f %15.1f %7d\n", v["method"], v["scene"], v["format"], v["tris"], v["instructions"], v["instructions"] / 1e5, (v["instructions"] - sink) / 1e5, 240 * 240 * 16 / 50e6 * 1e3, v["ram"]
   }
   END {
     print "*  estimate: instructions / 100e6 s. Instructions are not cycles (wait states, multi-cycle"

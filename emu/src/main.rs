@@ -32,15 +32,18 @@
 #![no_std]
 #![no_main]
 
+use core::any::Any;
 use core::hint::black_box;
 use core::sync::atomic::{compiler_fence, AtomicU32, Ordering};
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-use zrow::{Renderer, Scanline, Q16_16};
-use zrow_scenes::{Format, FrameHash, FOLEY, NAMES};
+use zrow::presets::{DepthStore, Preset, PRESETS};
+use zrow::{Config, Renderer, Scanline, Scene, Q16_16};
+use zrow_scenes::{Format, FrameHash, FOLEY, NAMES, PRESET_SCENES};
 
 include!("methods.rs");
+include!("presets.rs");
 
 /// The renderer the standard scenes use: 240-pixel rows, 1024 polygons, 3072 edges, 512
 /// active polygons — generous for them (the `ram=` field is what a frame really needs).
@@ -110,34 +113,40 @@ fn ram<N: Format, R: Renderer<N>>(req: &zrow::Requirements) -> usize {
     }
 }
 
-/// Renders scene `name` in format `N` once, between the markers, and reports it.
-fn bench<N: Format, R: Renderer<N>>(renderer: &mut R, name: &str) -> Result<Line, &'static str> {
-    zrow_scenes::with_scene::<N, _>(name, 0.0, |scene, cfg, tris| {
-        let mut rows = [0u32; 241];
-        let req = zrow::requirements(scene, cfg, &mut rows).map_err(|_| "requirements failed")?;
-        let mut sink = FrameHash::default();
-        let renderer = black_box(&mut *renderer);
-        zrow_bench_start();
-        let result = renderer.render(scene, cfg, &mut sink);
-        zrow_bench_stop();
-        black_box(&sink);
-        result.map_err(|_| "render failed (capacity or scene error)")?;
-        Ok(Line {
-            tris,
-            ram: ram::<N, R>(&req),
-            hash: sink.0,
-        })
+/// Renders `scene` with `renderer` once, between the markers, and reports it.
+fn frame<N: Format, R: Renderer<N>>(
+    renderer: &mut R,
+    scene: &dyn Scene<N>,
+    cfg: &Config,
+    tris: usize,
+) -> Result<Line, &'static str> {
+    let mut rows = [0u32; 241];
+    let req = zrow::requirements(scene, cfg, &mut rows).map_err(|_| "requirements failed")?;
+    let mut sink = FrameHash::default();
+    let renderer = black_box(renderer);
+    zrow_bench_start();
+    let result = renderer.render(scene, cfg, &mut sink);
+    zrow_bench_stop();
+    black_box(&sink);
+    result.map_err(|_| "render failed (capacity or scene error)")?;
+    Ok(Line {
+        tris,
+        ram: ram::<N, R>(&req),
+        hash: sink.0,
     })
-    .unwrap_or(Err("unknown scene"))
 }
 
-/// Benchmarks scene `name` in format `N` with `renderer`; false after an error line.
-fn bench_format<N: Format, R: Renderer<N>>(renderer: &mut R, name: &str) -> bool {
-    match bench(renderer, name) {
+/// Prints a frame's line (method `{prefix}{method}`), or an error line; false after an error.
+fn report<N: Format>(
+    prefix: &str,
+    method: &str,
+    name: &str,
+    line: Result<Line, &'static str>,
+) -> bool {
+    match line {
         Ok(l) => {
             hprintln!(
-                "method={} scene={name} format={} tris={} instructions=? ram={} hash={:016x}",
-                R::NAME,
+                "method={prefix}{method} scene={name} format={} tris={} instructions=? ram={} hash={:016x}",
                 N::NAME,
                 l.tris,
                 l.ram,
@@ -147,13 +156,79 @@ fn bench_format<N: Format, R: Renderer<N>>(renderer: &mut R, name: &str) -> bool
         }
         Err(e) => {
             hprintln!(
-                "error method={} scene={name} format={}: {e}",
-                R::NAME,
+                "error method={prefix}{method} scene={name} format={}: {e}",
                 N::NAME
             );
             false
         }
     }
+}
+
+/// Benchmarks scene `name` in format `N` with `renderer`; false after an error line.
+fn bench_format<N: Format, R: Renderer<N>>(renderer: &mut R, name: &str) -> bool {
+    let line = zrow_scenes::with_scene::<N, _>(name, 0.0, |scene, cfg, tris| {
+        frame(renderer, scene, cfg, tris)
+    });
+    report::<N>("", R::NAME, name, line.unwrap_or(Err("unknown scene")))
+}
+
+/// Renders `preset` (its format is `N`) on every preset scene with the renderer its depth store
+/// names, from `shelf`, and prints a `method=preset:NAME` line per frame; false after an error
+/// line.
+fn bench_preset<N: Format + 'static>(shelf: &mut Shelf, preset: &Preset) -> bool {
+    /// One preset frame with `renderer`.
+    fn draw<N: Format, R: Renderer<N>>(
+        renderer: Option<&mut R>,
+        preset: &Preset,
+        name: &str,
+    ) -> Result<Line, &'static str> {
+        let renderer = renderer.ok_or("no renderer of this format on the shelf")?;
+        zrow_scenes::with_preset_scene::<N, _>(name, preset, |scene, cfg, tris| {
+            frame(renderer, scene, cfg, tris)
+        })
+        .unwrap_or(Err("unknown scene"))
+    }
+    let mut ok = true;
+    for name in PRESET_SCENES {
+        let line = match preset.store {
+            DepthStore::Row32 => draw::<N, _>(shelf.get::<Standard<N>>(), preset, name),
+            DepthStore::Tile16 => draw::<N, _>(shelf.get::<PresetTiled<N>>(), preset, name),
+        };
+        ok &= report::<N>("preset:", preset.name, name, line);
+    }
+    ok
+}
+
+/// Renderers made once, each in a `cortex_m::singleton!` static of its own, and found again by
+/// type: the standard scan-line renderer and the presets' tiled renderer of each format in
+/// `preset_formats!` (src/presets.rs). A shelf, so that a format's scan-line renderer serves both
+/// the standard scenes and the presets (the MPS2 boards have 4 MB of RAM).
+struct Shelf([Option<&'static mut dyn Any>; 8]);
+
+impl Shelf {
+    /// Puts `renderer` on the first free slot; false if there is none (or no renderer).
+    fn put(&mut self, renderer: Option<&'static mut dyn Any>) -> bool {
+        match (renderer, self.0.iter_mut().find(|s| s.is_none())) {
+            (Some(r), Some(slot)) => {
+                *slot = Some(r);
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// The renderer of type `T`, if one was put.
+    fn get<T: Any>(&mut self) -> Option<&mut T> {
+        self.0
+            .iter_mut()
+            .find_map(|s| s.as_deref_mut()?.downcast_mut::<T>())
+    }
+}
+
+/// The error line for a standard renderer missing from the shelf; false.
+fn no_renderer(format: &str, name: &str) -> bool {
+    hprintln!("error method=scanline scene={name} format={format}: no renderer on the shelf");
+    false
 }
 
 /// Renders every comparison scene with renderer type `$t`, built once in a static of its own
@@ -173,11 +248,24 @@ macro_rules! compare {
 
 #[entry]
 fn main() -> ! {
-    let q16 = cortex_m::singleton!(: Standard<Q16_16> = Standard::new());
-    let f32s = cortex_m::singleton!(: Standard<f32> = Standard::new());
-    let (Some(q16), Some(f32s)) = (q16, f32s) else {
-        unreachable!("main runs once")
-    };
+    let mut ok = true;
+    let mut shelf = Shelf([const { None }; 8]);
+    // One scan-line and one tiled renderer per preset format, in statics of their own.
+    macro_rules! shelve {
+        ([] $($variant:ident => $t:ty),* $(,)?) => {
+            $(
+                ok &= shelf.put(
+                    cortex_m::singleton!(: Standard<$t> = Standard::new())
+                        .map(|r| r as &mut dyn Any),
+                );
+                ok &= shelf.put(
+                    cortex_m::singleton!(: PresetTiled<$t> = PresetTiled::new())
+                        .map(|r| r as &mut dyn Any),
+                );
+            )*
+        };
+    }
+    preset_formats!(shelve,);
     hprintln!(
         "# zrow emulated bench, target {}, renderer {} B (Q16.16) / {} B (f32) as built",
         env!("BENCH_TARGET"),
@@ -189,10 +277,13 @@ fn main() -> ! {
     hprintln!("# calibration (the two markers back to back) instructions=?");
     hash_alone();
     hprintln!("# hash sink alone (240 rows of 240 pixels) instructions=?");
-    let mut ok = true;
     for name in NAMES {
-        ok &= bench_format(q16, name);
-        ok &= bench_format(f32s, name);
+        let line = shelf
+            .get::<Standard<Q16_16>>()
+            .map(|r| bench_format(r, name));
+        ok &= line.unwrap_or_else(|| no_renderer("Q16.16", name));
+        let line = shelf.get::<Standard<f32>>().map(|r| bench_format(r, name));
+        ok &= line.unwrap_or_else(|| no_renderer("f32", name));
     }
     macro_rules! run {
         ($t:ty) => {
@@ -209,6 +300,21 @@ fn main() -> ! {
         };
     }
     for_each_structured!(structured);
+    for preset in PRESETS.iter() {
+        macro_rules! draw {
+            ($t:ty) => {
+                ok &= bench_preset::<$t>(&mut shelf, preset)
+            };
+        }
+        with_preset_format!(
+            preset,
+            draw,
+            hprintln!(
+                "# preset {}: skipped (its format is not in preset_formats! yet)",
+                preset.name
+            )
+        );
+    }
     hprintln!(
         "# pairs: starts={} stops={}",
         STARTS.load(Ordering::Relaxed),

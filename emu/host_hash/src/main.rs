@@ -15,10 +15,12 @@
 //! host, so RAM is the guest's figure alone.
 
 use std::process::ExitCode;
+use zrow::presets::{DepthStore, Preset, PRESETS};
 use zrow::{Renderer, Scanline, Q16_16};
-use zrow_scenes::{Format, FrameHash, FOLEY, NAMES};
+use zrow_scenes::{Format, FrameHash, FOLEY, NAMES, PRESET_SCENES};
 
 include!("../../src/methods.rs");
+include!("../../src/presets.rs");
 
 /// The bench's standard renderer (emu/src/main.rs): 240-pixel rows, 1024 polygons, 3072
 /// edges, 512 active polygons.
@@ -32,11 +34,43 @@ fn line<N: Format, R: Renderer<N> + Default>(name: &str) -> bool {
     let result = zrow_scenes::with_scene::<N, _>(name, 0.0, |scene, cfg, tris| {
         renderer.render(scene, cfg, &mut sink).map(|_| tris)
     });
+    report::<N>("", R::NAME, name, result, sink)
+}
+
+/// Renders `preset` (its format is `N`) on every preset scene, each with a new renderer of the
+/// type its depth store names, and prints a `method=preset:NAME` line per frame; false on error.
+fn preset_lines<N: Format>(preset: &Preset) -> bool {
+    /// One preset frame with a new `R`.
+    fn draw<N: Format, R: Renderer<N> + Default>(preset: &Preset, name: &str) -> bool {
+        let mut renderer = Box::new(R::default());
+        let mut sink = FrameHash::default();
+        let result = zrow_scenes::with_preset_scene::<N, _>(name, preset, |scene, cfg, tris| {
+            renderer.render(scene, cfg, &mut sink).map(|_| tris)
+        });
+        report::<N>("preset:", preset.name, name, result, sink)
+    }
+    let mut ok = true;
+    for name in PRESET_SCENES {
+        ok &= match preset.store {
+            DepthStore::Row32 => draw::<N, Standard<N>>(preset, name),
+            DepthStore::Tile16 => draw::<N, PresetTiled<N>>(preset, name),
+        };
+    }
+    ok
+}
+
+/// Prints a frame's line (method `{prefix}{method}`), or an error on stderr; false on error.
+fn report<N: Format>(
+    prefix: &str,
+    method: &str,
+    name: &str,
+    result: Option<Result<usize, zrow::RenderError<core::convert::Infallible>>>,
+    sink: FrameHash,
+) -> bool {
     match result {
         Some(Ok(tris)) => {
             println!(
-                "method={} scene={name} format={} tris={tris} hash={:016x}",
-                R::NAME,
+                "method={prefix}{method} scene={name} format={} tris={tris} hash={:016x}",
                 N::NAME,
                 sink.0
             );
@@ -44,8 +78,7 @@ fn line<N: Format, R: Renderer<N> + Default>(name: &str) -> bool {
         }
         Some(Err(e)) => {
             eprintln!(
-                "error method={} scene={name} format={}: {e:?}",
-                R::NAME,
+                "error method={prefix}{method} scene={name} format={}: {e:?}",
                 N::NAME
             );
             false
@@ -77,6 +110,15 @@ fn all() -> bool {
         };
     }
     for_each_structured!(structured);
+    for preset in PRESETS.iter() {
+        macro_rules! draw {
+            ($t:ty) => {
+                ok &= preset_lines::<$t>(preset)
+            };
+        }
+        // Formats the bench skips print nothing: the lines stay the bench's.
+        with_preset_format!(preset, draw, ());
+    }
     ok
 }
 
