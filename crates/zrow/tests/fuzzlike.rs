@@ -72,7 +72,7 @@ impl Input {
 }
 
 /// The error must be true of the input.
-fn check_error<N: Scalar>(e: Error, input: &Input, what: &str) {
+fn check_error(e: Error, input: &Input, what: &str) {
     let face = |f: u32| {
         input
             .faces
@@ -191,7 +191,7 @@ fn run<N: Scalar>(input: &Input) {
             Ok(_) => assert_eq!(cap.rows_received, input.height as usize, "{what}"),
             Err(RenderError::Scene(e)) => {
                 assert_eq!(cap.rows_received, 0, "{what}: {e:?} after rows");
-                check_error::<N>(e, input, &what);
+                check_error(e, input, &what);
             }
             Err(RenderError::Sink(())) => panic!("{what}: the capture never fails"),
         }
@@ -408,7 +408,12 @@ fn bad_input_every_method<N: Scalar>() {
         assert_eq!(rows, 0, "{} {name}", N::NAME);
     }
     // Wider than the rows: a capacity error too.
-    for (name, e, rows) in each(&mut ms, &v, &[ok.clone()], &Config::screen(65, 4)) {
+    for (name, e, rows) in each(
+        &mut ms,
+        &v,
+        std::slice::from_ref(&ok),
+        &Config::screen(65, 4),
+    ) {
         assert!(
             matches!(e, Some(Error::Capacity { .. })),
             "{} {name}: {e:?}",
