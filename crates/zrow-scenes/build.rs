@@ -1,9 +1,9 @@
 //! Generates the standard meshes as const Rust data (`$OUT_DIR/meshes.rs`), once, on the
-//! build host: positions in both number formats (f32 and Q16.16 bits, rounded to nearest),
-//! faces as static index slices with colours. Every generated face is checked to be
-//! counter-clockwise seen from outside (the culling convention). The screen-space scenes
-//! (`random400`, and `foley100`/`foley2500` from zrow-compare's generator, included by path)
-//! are drawn without culling.
+//! build host: positions in every number format (f32, and Q16.16 and Q24.8 bits rounded to
+//! the nearest LSB), faces as static index slices with colours. Every generated face is
+//! checked to be counter-clockwise seen from outside (the culling convention). The
+//! screen-space scenes (`random400`, and `foley100`/`foley2500` from zrow-compare's generator,
+//! included by path) are drawn without culling.
 
 use std::fmt::Write as _;
 
@@ -65,28 +65,32 @@ impl MeshGen {
             .unwrap();
         }
         writeln!(out, "];").unwrap();
-        writeln!(
-            out,
-            "/// 16.16 fixed point, rounded to nearest from the f32 positions."
-        )
-        .unwrap();
-        writeln!(
-            out,
-            "pub(crate) static {name}_Q16_16: [Vec3<Q16_16>; {n}] = ["
-        )
-        .unwrap();
-        let q = |x: f32| ((x as f64) * 65536.0).round() as i32;
-        for v in &self.vertices {
+        // Each fixed format: its type, its fractional bits (rounded to the nearest LSB).
+        for (ty, frac) in [("Q16_16", 16), ("Q24_8", 8)] {
+            let (int, point) = (32 - frac, frac);
             writeln!(
                 out,
-                "    Vec3::new(Q16_16::from_bits({}), Q16_16::from_bits({}), Q16_16::from_bits({})),",
-                q(v[0]),
-                q(v[1]),
-                q(v[2])
+                "/// {int}.{point} fixed point, rounded to nearest from the f32 positions."
             )
             .unwrap();
+            writeln!(out, "pub(crate) static {name}_{ty}: [Vec3<{ty}>; {n}] = [").unwrap();
+            let q = |x: f32| {
+                let v = ((x as f64) * (1u64 << frac) as f64).round();
+                assert!(v.abs() < 2f64.powi(31), "{name}: {x} does not fit {ty}");
+                v as i32
+            };
+            for v in &self.vertices {
+                writeln!(
+                    out,
+                    "    Vec3::new({ty}::from_bits({}), {ty}::from_bits({}), {ty}::from_bits({})),",
+                    q(v[0]),
+                    q(v[1]),
+                    q(v[2])
+                )
+                .unwrap();
+            }
+            writeln!(out, "];").unwrap();
         }
-        writeln!(out, "];").unwrap();
         let f = self.faces.len();
         writeln!(
             out,

@@ -2,8 +2,9 @@
 //! emulated Cortex-M benches and on the board.
 //!
 //! Meshes are generated once by `build.rs` and compiled in as `static` arrays, so on a
-//! microcontroller they stay in flash: positions in both number formats (the [`Format`] trait
-//! picks the right array), faces as static index slices with a colour each.
+//! microcontroller they stay in flash: positions in every number format — f32, [`Q16_16`] and
+//! [`Q24_8`], the fixed ones rounded to the nearest LSB (the [`Format`] trait picks the right
+//! array) — and faces as static index slices with a colour each.
 //!
 //! | name | mode | faces |
 //! |---|---|---|
@@ -16,7 +17,8 @@
 //! and two wavy sheets cutting through them and each other, tessellated into 100 and 2,500
 //! triangles by zrow-compare's generator (`crates/zrow-compare/src/surfaces.rs`, included by
 //! `build.rs`), at 240 × 240. Positions are on a 1/256-pixel grid (depth 1/1024), so their f32
-//! and Q16.16 versions are the same numbers.
+//! and Q16.16 versions are the same numbers; Q24.8 keeps x and y exactly and rounds depth to
+//! the nearest 1/256.
 //!
 //! Demo scenes ([`DEMOS`], for the simulator window and the board): `interlocked` — two
 //! 256-triangle rings linked through each other and a cube piercing both, turning, so hidden
@@ -42,9 +44,11 @@
 #![deny(missing_docs)]
 
 use embedded_graphics_core::pixelcolor::Rgb565;
+use zrow::presets::Preset;
+use zrow::shading::{DepthCue, Interpolation};
 use zrow::{
-    Affine, Camera, Config, Face, Light, Mesh, ModelScene, Object, Scalar, Scene, ScreenScene,
-    Vec3, Q16_16,
+    Affine, Camera, Config, Face, Light, MathLib, Mesh, ModelScene, Object, Scalar, Scene,
+    ScreenScene, Vec3, Q16_16, Q24_8,
 };
 
 mod meshes {
@@ -123,6 +127,27 @@ impl Format for Q16_16 {
     }
 }
 
+impl Format for Q24_8 {
+    fn cube() -> &'static [Vec3<Q24_8>] {
+        &meshes::CUBE_Q24_8
+    }
+    fn torus() -> &'static [Vec3<Q24_8>] {
+        &meshes::TORUS_Q24_8
+    }
+    fn random400() -> &'static [Vec3<Q24_8>] {
+        &meshes::RANDOM400_Q24_8
+    }
+    fn ring() -> &'static [Vec3<Q24_8>] {
+        &meshes::RING_Q24_8
+    }
+    fn foley100() -> &'static [Vec3<Q24_8>] {
+        &meshes::FOLEY100_Q24_8
+    }
+    fn foley2500() -> &'static [Vec3<Q24_8>] {
+        &meshes::FOLEY2500_Q24_8
+    }
+}
+
 /// The mesh of a standard scene, borrowed from flash.
 pub fn mesh<N: Format>(name: &str) -> Option<Mesh<'static, N>> {
     let (vertices, faces): (&'static [Vec3<N>], &'static [Face<'static>]) = match name {
@@ -131,15 +156,57 @@ pub fn mesh<N: Format>(name: &str) -> Option<Mesh<'static, N>> {
         "random400" => (N::random400(), &meshes::RANDOM400_FACES),
         "foley100" => (N::foley100(), &meshes::FOLEY100_FACES),
         "foley2500" => (N::foley2500(), &meshes::FOLEY2500_FACES),
+        "ring" => (N::ring(), &meshes::RING_FACES),
         _ => return None,
     };
     Some(Mesh::new(vertices, faces))
 }
 
-/// The model scenes' camera.
+/// The model scenes' eye (looking at the origin, y up).
+pub const EYE: [f32; 3] = [2.5, 1.8, 3.2];
+/// The model scenes' vertical field of view, radians.
+pub const FOV_Y: f32 = 60.0 * core::f32::consts::PI / 180.0;
+/// The model scenes' near and far planes.
+pub const NEAR_FAR: [f32; 2] = [0.1, 20.0];
+/// Towards the model scenes' light, and its ambient fraction.
+pub const LIGHT: ([f32; 3], f32) = ([0.4, 1.0, 0.7], 0.2);
+/// How a model scene (`cube`, `mesh1k`) is turned: yaw `MODEL_TURN.0 + angle`, pitch
+/// `MODEL_TURN.1`.
+pub const MODEL_TURN: (f32, f32) = (0.35, 0.2);
+
+/// The model scenes' camera (tangent by micromath).
 pub fn camera<N: Scalar>() -> Option<Camera<N>> {
-    let projection = Camera::<N>::perspective(60.0 * core::f32::consts::PI / 180.0, 0.1, 20.0)?;
-    Camera::look_at([2.5, 1.8, 3.2], [0.0; 3], [0.0, 1.0, 0.0], projection)
+    camera_with(MathLib::Micromath)
+}
+
+/// The model scenes' camera, its tangent from `math`.
+pub fn camera_with<N: Scalar>(math: MathLib) -> Option<Camera<N>> {
+    let projection = Camera::<N>::perspective_with(math, FOV_Y, NEAR_FAR[0], NEAR_FAR[1])?;
+    Camera::look_at(EYE, [0.0; 3], [0.0, 1.0, 0.0], projection)
+}
+
+/// The scenes the presets are measured on (`crates/zrow-tradeoff`, `emu/`).
+pub const PRESET_SCENES: [&str; 3] = ["cube", "mesh1k", "interlocked"];
+
+/// The depth cue of the preset measurements: full intensity up to 3 units from the eye, 0.2
+/// from 6 on (the model scenes' objects lie about 3.4 to 5.5 from the eye).
+pub const PRESET_CUE: DepthCue = DepthCue {
+    near: 3.0,
+    far: 6.0,
+    floor: 0.2,
+    interpolation: Interpolation::PerspectiveCorrect,
+};
+
+/// Calls `f` with a model scene as `preset` draws it: built with the preset's maths, its
+/// configuration from [`Preset::config`] with [`PRESET_CUE`]. `None` for an unknown name.
+pub fn with_preset_scene<N: Format, R>(
+    name: &str,
+    preset: &Preset,
+    f: impl FnOnce(&dyn Scene<N>, &Config, usize) -> R,
+) -> Option<R> {
+    with_scene_math(name, 0.0, preset.math, |scene, cfg, faces| {
+        f(scene, &preset.config(*cfg, PRESET_CUE), faces)
+    })
 }
 
 /// The model scenes' light.
@@ -158,8 +225,18 @@ pub fn with_scene<N: Format, R>(
     angle: f32,
     f: impl FnOnce(&dyn Scene<N>, &Config, usize) -> R,
 ) -> Option<R> {
+    with_scene_math(name, angle, MathLib::Micromath, f)
+}
+
+/// [`with_scene`] with the model scenes' trig from `math`.
+pub fn with_scene_math<N: Format, R>(
+    name: &str,
+    angle: f32,
+    math: MathLib,
+    f: impl FnOnce(&dyn Scene<N>, &Config, usize) -> R,
+) -> Option<R> {
     if name == "interlocked" {
-        return interlocked(angle, f);
+        return interlocked(angle, math, f);
     }
     let mesh = mesh::<N>(name)?;
     let faces = mesh.faces.len();
@@ -168,11 +245,16 @@ pub fn with_scene<N: Format, R>(
     }
     let objects = [Object {
         mesh: &mesh,
-        transform: Affine::rotate_yx_translate(0.35 + angle, 0.2, [0.0; 3])?,
+        transform: Affine::rotate_yx_translate_with(
+            math,
+            MODEL_TURN.0 + angle,
+            MODEL_TURN.1,
+            [0.0; 3],
+        )?,
     }];
     let scene = ModelScene {
         objects: &objects,
-        camera: camera()?,
+        camera: camera_with(math)?,
         light: light()?,
     };
     Some(f(&scene, &Config::model(SIZE, SIZE), faces))
@@ -181,13 +263,15 @@ pub fn with_scene<N: Format, R>(
 /// Two rings linked through each other and a small cube through both, turning by `angle`.
 fn interlocked<N: Format, R>(
     angle: f32,
+    math: MathLib,
     f: impl FnOnce(&dyn Scene<N>, &Config, usize) -> R,
 ) -> Option<R> {
     let ring = Mesh::new(N::ring(), &meshes::RING_FACES);
     let cube = Mesh::new(N::cube(), &meshes::CUBE_FACES);
     // Ring A lies flat, ring B stands up through A's hole; the cube sits where they cross.
-    let turn = |yaw: f32, pitch: f32, t: [f32; 3]| Affine::rotate_yx_translate(yaw, pitch, t);
-    let spin = Affine::rotate_yx_translate(angle, 0.3, [0.0; 3])?;
+    let turn =
+        |yaw: f32, pitch: f32, t: [f32; 3]| Affine::rotate_yx_translate_with(math, yaw, pitch, t);
+    let spin = turn(angle, 0.3, [0.0; 3])?;
     let objects = [
         Object {
             mesh: &ring,
@@ -204,7 +288,7 @@ fn interlocked<N: Format, R>(
     ];
     let scene = ModelScene {
         objects: &objects,
-        camera: camera()?,
+        camera: camera_with(math)?,
         light: light()?,
     };
     let faces = 2 * ring.faces.len() + cube.faces.len();

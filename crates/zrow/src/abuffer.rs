@@ -190,6 +190,7 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const F: usize>
         // `validate` checked width <= W, so every `..w` below is in range.
         let w = cfg.width as usize;
         self.check_fragments(cfg)?;
+        let cue = crate::shading::Cue::for_rows(scene, cfg)?;
         for y in 0..cfg.height as i32 {
             opaque_row(
                 &self.table,
@@ -206,6 +207,11 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const F: usize>
                 let _ = frags.push(f);
             });
             resolve(frags, &mut self.intensity[..w]);
+            crate::shading::Cue::shade_row_if_perspective(
+                &cue,
+                &self.depth[..w],
+                &mut self.intensity[..w],
+            );
             sink.write_row(&Row {
                 y: y as u16,
                 intensity: &self.intensity[..w],

@@ -113,6 +113,7 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const Q: usize, 
         let w = cfg.width as i32;
         self.build(w)?;
         self.traverse(cfg.cull == Cull::Back)?;
+        let cue = crate::shading::Cue::for_rows(scene, cfg)?;
         let stats = FrameStats {
             polygons: self.order.len() as u32,
             edges: self.table.edge_count() as u32,
@@ -124,6 +125,7 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const Q: usize, 
             &self.pieces,
             &self.order,
             cfg,
+            &cue,
             &mut self.depth,
             &mut self.intensity,
             sink,

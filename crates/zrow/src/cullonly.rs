@@ -69,6 +69,7 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize> CullOnly<N, W, P
     ) -> Result<FrameStats, RenderError<K::Error>> {
         cfg.validate(W)?;
         self.table.build(scene, cfg, false)?;
+        let cue = crate::shading::Cue::for_rows(scene, cfg)?;
         let stats = FrameStats {
             polygons: self.table.len() as u32,
             edges: self.table.edge_count() as u32,
@@ -78,6 +79,7 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize> CullOnly<N, W, P
             &self.table,
             0..self.table.len(),
             cfg,
+            &cue,
             &mut self.depth,
             &mut self.intensity,
             sink,

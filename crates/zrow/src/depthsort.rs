@@ -109,6 +109,7 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const Q: usize>
         cfg.validate(W)?;
         self.table.build(scene, cfg, false)?;
         self.sort(cfg.width as i32)?;
+        let cue = crate::shading::Cue::for_rows(scene, cfg)?;
         let stats = FrameStats {
             polygons: self.table.len() as u32,
             edges: self.table.edge_count() as u32,
@@ -120,6 +121,7 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const Q: usize>
             &self.pieces,
             &self.order,
             cfg,
+            &cue,
             &mut self.depth,
             &mut self.intensity,
             sink,

@@ -79,9 +79,16 @@ pub enum Error {
         /// Normals in the mesh.
         normals: u32,
     },
-    /// The configuration is impossible: size 0 or above `MAX_VIEWPORT`, or sub-pixel bits
-    /// outside 1..=8.
+    /// The configuration is impossible: size 0 or above `MAX_VIEWPORT`, sub-pixel bits
+    /// outside 1..=8, or depth-cue parameters that are not finite, not `near < far`, or a
+    /// `floor` outside 0..=1.
     BadConfig,
+    /// This method does not implement `feature`: pick a method that does (the message says
+    /// which) or another setting.
+    Unsupported {
+        /// What is not supported, and where it is.
+        feature: &'static str,
+    },
 }
 
 impl core::fmt::Display for Table {
@@ -131,8 +138,9 @@ impl core::fmt::Display for Error {
             ),
             Error::BadConfig => write!(
                 f,
-                "bad configuration: size must be 1..=2048 and sub-pixel bits 1..=8"
+                "bad configuration: size must be 1..=2048, sub-pixel bits 1..=8, depth cue near < far with floor 0..=1"
             ),
+            Error::Unsupported { feature } => write!(f, "not supported by this method: {feature}"),
         }
     }
 }

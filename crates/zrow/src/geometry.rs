@@ -34,6 +34,52 @@ use heapless::Vec;
 /// Depth of the far plane in model mode (the near plane is at 0).
 pub const DEPTH_RANGE: f32 = 256.0;
 
+/// How a perspective camera's depth is stored ([`crate::Config::depth`]). Orthographic cameras
+/// and screen-space scenes store depth linear in w either way (it is then screen-linear).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum DepthMapping {
+    /// `DEPTH_RANGE · (1 − near/w) · far/(far − near)`: affine in 1/w, so linear in screen
+    /// space along any plane — what the edge walk's linear interpolation assumes. Exact; its
+    /// resolution is fine near the eye and coarse far away (Δw ≈ w²·LSB / (`DEPTH_RANGE`·near)).
+    #[default]
+    InverseW,
+    /// `DEPTH_RANGE · (w − near) / (far − near)` at the vertices, interpolated linearly in
+    /// screen space ("z-buffering w"): uniform resolution, but w is not linear in screen space,
+    /// so depth between the vertices is wrong (too far in the middle of a receding polygon)
+    /// and interpenetrating or nearly touching surfaces can swap. Kept to measure that trade.
+    LinearW,
+}
+
+/// How a frame's stored depth maps back to view distance w: the camera's depth mapping, for
+/// stages after visibility ([`crate::shading`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ViewDepth<N> {
+    /// `w = k_near / (k − z)` (perspective, [`DepthMapping::InverseW`]).
+    InverseW {
+        /// `DEPTH_RANGE · far / (far − near)`.
+        k: N,
+        /// `k · near`.
+        k_near: N,
+    },
+    /// `w = near + z · per_depth` (orthographic, [`DepthMapping::LinearW`], screen space).
+    Linear {
+        /// w at depth 0.
+        near: N,
+        /// Change of w per unit of stored depth.
+        per_depth: N,
+    },
+}
+
+impl<N: Scalar> ViewDepth<N> {
+    /// View distance at stored depth `z` (saturating; the far limit where `z` reaches `k`).
+    pub fn w(&self, z: N) -> N {
+        match *self {
+            ViewDepth::InverseW { k, k_near } => k_near.div(k.sub(z)).unwrap_or(N::MAX),
+            ViewDepth::Linear { near, per_depth } => near.add(z.mul(per_depth)),
+        }
+    }
+}
+
 type Poly<V> = Vec<V, MAX_POLYGON_VERTICES>;
 
 /// Sutherland–Hodgman against one plane. `cross(inside, outside)` makes the new vertex.
@@ -168,6 +214,14 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ScreenScene<'_, N, I> {
         }
         Ok(())
     }
+
+    /// Screen-space depth is the view distance itself.
+    fn view_depth(&self, _cfg: &Config) -> Option<ViewDepth<N>> {
+        Some(ViewDepth::Linear {
+            near: N::ZERO,
+            per_depth: N::ONE,
+        })
+    }
 }
 
 /// Scales a colour by an intensity in 0..=1.
@@ -258,8 +312,9 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
         let depth_lin = range.div(far.sub(near)).ok_or(Error::BadConfig)?;
         let k_near = depth_k.mul(near);
         let light = self.camera.view.apply_dir(self.light.direction).unit_max();
+        let linear_w = perspective && cfg.depth == DepthMapping::LinearW;
         let light = light.and_then(|l| {
-            let len = l.dot(l).sqrt();
+            let len = cfg.math.sqrt(l.dot(l));
             Some(Vec3::new(l.x.div(len)?, l.y.div(len)?, l.z.div(len)?))
         });
         let minus_one = N::ONE.neg();
@@ -305,7 +360,7 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
                 let lambert = match light {
                     Some(l) => {
                         let d = normal.dot(l);
-                        let len = normal.dot(normal).sqrt();
+                        let len = cfg.math.sqrt(normal.dot(normal));
                         if d > N::ZERO {
                             d.div(len).unwrap_or(N::ZERO)
                         } else {
@@ -373,8 +428,11 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
                     let (nx, ny, z) = if perspective {
                         let nx = v.x.div(v.w).ok_or(Error::NonFinite { face: this })?;
                         let ny = v.y.div(v.w).ok_or(Error::NonFinite { face: this })?;
-                        let z =
-                            depth_k.sub(k_near.div(v.w).ok_or(Error::NonFinite { face: this })?);
+                        let z = if linear_w {
+                            v.w.sub(near).mul(depth_lin)
+                        } else {
+                            depth_k.sub(k_near.div(v.w).ok_or(Error::NonFinite { face: this })?)
+                        };
                         (nx, ny, z)
                     } else {
                         (v.x, v.y, v.w.sub(near).mul(depth_lin))
@@ -385,5 +443,29 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
             }
         }
         Ok(())
+    }
+
+    /// The inverse of the depth mapping `polygons` applies (same constants, same operations).
+    fn view_depth(&self, cfg: &Config) -> Option<ViewDepth<N>> {
+        let range = N::from_f32(DEPTH_RANGE)?;
+        let (perspective, near, far) = match self.camera.projection {
+            Projection::Perspective { near, far, .. } => (true, near, far),
+            Projection::Orthographic { near, far, .. } => (false, near, far),
+        };
+        if !(near > N::ZERO && far > near) {
+            return None;
+        }
+        if perspective && cfg.depth == DepthMapping::InverseW {
+            let k = range.mul(far.div(far.sub(near))?);
+            Some(ViewDepth::InverseW {
+                k,
+                k_near: k.mul(near),
+            })
+        } else {
+            Some(ViewDepth::Linear {
+                near,
+                per_depth: far.sub(near).div(range)?,
+            })
+        }
     }
 }

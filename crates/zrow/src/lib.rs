@@ -45,16 +45,20 @@ pub mod geometry;
 pub mod math;
 /// The interface every hidden-surface method implements.
 pub mod method;
-/// Number formats: [`Q16_16`] and `f32` behind one trait.
+/// Number formats: [`Q16_16`], [`Q24_8`] and `f32` behind one trait.
 pub mod number;
 /// The polygon table methods that revisit polygons keep, with exact sample queries.
 pub mod polygons;
+/// Named configurations trading speed for accuracy.
+pub mod presets;
 /// Snapped polygons, the exact edge walk, polygon setup.
 pub mod raster;
 /// Capacities a scene needs.
 pub mod requirements;
 /// Meshes, objects, camera, light; screen-space scenes.
 pub mod scene;
+/// Depth cueing: intensity by distance, affine or perspective-correct.
+pub mod shading;
 /// Where rows go.
 pub mod sink;
 /// What a mesh's structure allows (one closed convex solid?).
@@ -85,9 +89,9 @@ pub mod warnock;
 pub mod zbuffer;
 
 pub use error::{Error, RenderError, Table};
-pub use math::{Affine, Vec3};
+pub use math::{Affine, MathLib, Vec3};
 pub use method::{FrameStats, Renderer};
-pub use number::{Scalar, Q16_16};
+pub use number::{Scalar, Q16_16, Q24_8};
 pub use raster::{Config, Cull};
 pub use requirements::{requirements, Requirements};
 pub use scanline::Scanline;

@@ -2,6 +2,65 @@
 
 use crate::number::Scalar;
 
+/// Which `f32` routines compute trigonometry (rotations, the field of view) and the square
+/// roots of lighting: the speed–accuracy knob of the presets.
+///
+/// | routine | [`MathLib::Micromath`] (measured, tests/shading.rs) | [`MathLib::Libm`] |
+/// |---|---|---|
+/// | sin, cos | abs. error 1.09e-3 on ±2π | ≤ 1 ULP (musl; 3e-8 abs. measured) |
+/// | tan | rel. error 1.3 % on \|x\| ≤ 1.4 | ≤ 1 ULP |
+/// | sqrt | rel. error 6.1 % on 1e-6..1e6 | [`Scalar::sqrt`]: within 1 ULP |
+///
+/// Micromath is smaller and, on a Cortex-M without a fast divider, faster; its errors move
+/// vertices (trig) and change face intensities (sqrt). [`Scalar::sqrt`] itself is always exact
+/// (Q16.16: floor-exact; f32: refined to 1 ULP); `MathLib` picks what lighting uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum MathLib {
+    /// `micromath` 2.1: fast approximations.
+    Micromath,
+    /// `libm` 0.2 (a port of musl's libm): exact to about one ULP.
+    #[default]
+    Libm,
+}
+
+impl MathLib {
+    /// Sine of `x` radians.
+    pub fn sin(self, x: f32) -> f32 {
+        match self {
+            MathLib::Micromath => micromath::F32Ext::sin(x),
+            MathLib::Libm => libm::sinf(x),
+        }
+    }
+    /// Cosine of `x` radians.
+    pub fn cos(self, x: f32) -> f32 {
+        match self {
+            MathLib::Micromath => micromath::F32Ext::cos(x),
+            MathLib::Libm => libm::cosf(x),
+        }
+    }
+    /// Tangent of `x` radians.
+    pub fn tan(self, x: f32) -> f32 {
+        match self {
+            MathLib::Micromath => micromath::F32Ext::tan(x),
+            MathLib::Libm => libm::tanf(x),
+        }
+    }
+    /// Square root of `x` in any format, computed in `f32` for [`MathLib::Micromath`] and by
+    /// [`Scalar::sqrt`] (exact) for [`MathLib::Libm`]. 0 for `x ≤ 0`.
+    pub fn sqrt<N: Scalar>(self, x: N) -> N {
+        match self {
+            MathLib::Micromath => {
+                let v = x.to_f32();
+                if v.is_nan() || v <= 0.0 {
+                    return N::ZERO;
+                }
+                N::from_f32(micromath::F32Ext::sqrt(v)).unwrap_or(N::ZERO)
+            }
+            MathLib::Libm => x.sqrt(),
+        }
+    }
+}
+
 /// A 3-vector.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct Vec3<N> {
@@ -86,11 +145,19 @@ impl<N: Scalar> Affine<N> {
         Some(out)
     }
     /// Rotation about the y axis then the x axis (angles in radians) and a translation,
-    /// computed in `f32` (micromath) and converted.
+    /// computed in `f32` with micromath and converted (see [`Affine::rotate_yx_translate_with`]).
     pub fn rotate_yx_translate(yaw: f32, pitch: f32, t: [f32; 3]) -> Option<Self> {
-        use micromath::F32Ext as M;
-        let (sy, cy) = (M::sin(yaw), M::cos(yaw));
-        let (sp, cp) = (M::sin(pitch), M::cos(pitch));
+        Self::rotate_yx_translate_with(MathLib::Micromath, yaw, pitch, t)
+    }
+    /// [`Affine::rotate_yx_translate`] with the sines and cosines from `math`.
+    pub fn rotate_yx_translate_with(
+        math: MathLib,
+        yaw: f32,
+        pitch: f32,
+        t: [f32; 3],
+    ) -> Option<Self> {
+        let (sy, cy) = (math.sin(yaw), math.cos(yaw));
+        let (sp, cp) = (math.sin(pitch), math.cos(pitch));
         // R = Rx(pitch) · Ry(yaw)
         Self::from_f32([
             [cy, 0.0, sy, t[0]],

@@ -1,9 +1,22 @@
-//! Number formats: the [`Scalar`] trait and its two implementations, [`Q16_16`] and `f32`.
+//! Number formats: the [`Scalar`] trait and its three implementations, [`Q16_16`], [`Q24_8`]
+//! and `f32`.
 //!
 //! A renderer is generic over its number format, so a Q16.16 renderer and an f32 renderer can
 //! live side by side in one program. The format governs geometry (transform, clipping,
 //! projection, lighting) and depth. Coverage never depends on it: vertices are snapped to a
 //! sub-pixel grid of integers before any coverage decision (see [`crate::raster`]).
+//!
+//! The two fixed-point formats are one implementation (`impl_fixed!`) that works on the raw
+//! 32-bit value and the type's own fractional bits F:
+//!
+//! | format | range | LSB | depth 0..256 (model mode) |
+//! |---|---|---|---|
+//! | [`Q16_16`] | ±32,768 | 2^-16 | 2^24 steps |
+//! | [`Q24_8`] | ±8,388,608 | 2^-8 | 2^16 steps |
+//!
+//! Q24.8 trades precision for range, in geometry as in depth: a depth plane's gradients are
+//! rounded to 1/256 per pixel as well, so its error grows 256 times faster across the screen
+//! than in Q16.16 (see [`Scalar::depth_plane`]).
 //!
 //! Every operation a renderer uses is named here with its overflow behaviour, so nothing in the
 //! pipeline relies on an operator that panics in debug builds and wraps in release:
@@ -15,6 +28,12 @@ use crate::raster::RasterVertex;
 /// Signed fixed point with 16 integer and 16 fractional bits (range ±32768, LSB 2^-16).
 #[allow(non_camel_case_types)]
 pub type Q16_16 = fixed::types::I16F16;
+
+/// Signed fixed point with 24 integer and 8 fractional bits (range ±8,388,608, LSB 2^-8):
+/// a 16-bit-class depth (0..256 in model mode is 65,536 steps) in a 32-bit word, with
+/// coordinates to ±8,388,607. Build one as `Q24_8::from_bits(384) // 24.8 fixed point: 1.5`.
+#[allow(non_camel_case_types)]
+pub type Q24_8 = fixed::types::I24F8;
 
 /// The depth plane of one polygon, ready for incremental stepping.
 ///
@@ -56,9 +75,10 @@ impl<N: Scalar> DepthPlane<N> {
 
 /// A number format the renderer can compute in.
 ///
-/// Implemented for [`Q16_16`] and `f32`. All methods are total: none panics, whatever the input.
+/// Implemented for [`Q16_16`], [`Q24_8`] and `f32`. All methods are total: none panics,
+/// whatever the input.
 pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
-    /// Short name used in reports (`"q16.16"`, `"f32"`).
+    /// Short name used in reports (`"q16.16"`, `"q24.8"`, `"f32"`).
     const NAME: &'static str;
     /// Zero.
     const ZERO: Self;
@@ -71,7 +91,7 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     fn from_f32(v: f32) -> Option<Self>;
     /// Converts to `f32` (for reports and tests; rounding to nearest).
     fn to_f32(self) -> f32;
-    /// Converts to `f64`, exactly (both formats fit an `f64`'s 53-bit mantissa).
+    /// Converts to `f64`, exactly (every format fits an `f64`'s 53-bit mantissa).
     fn to_f64(self) -> f64;
     /// Whether the value is a number (always, for fixed point; not NaN or ±∞ for `f32`).
     fn is_finite(self) -> bool;
@@ -88,20 +108,24 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
         Self::ZERO.sub(self)
     }
     /// Square root of a non-negative value (0 for negative input). Exact to the format's
-    /// rounding: floor for Q16.16, within 1 ULP for f32.
+    /// rounding: floor for fixed point (the root's bits are `isqrt(bits·2^F)`, F the
+    /// fractional bits), within 1 ULP for f32.
     fn sqrt(self) -> Self;
     /// Clamps to 0..=1 and scales to 0..=255 (truncating).
     fn to_unit_u8(self) -> u8;
 
     /// Rounds to the nearest multiple of 2^-`bits` and returns it as an integer count of
     /// sub-pixels (ties round up). `None` if the result does not fit an `i32`.
+    /// `bits` is at most the format's fractional bits (8 in Q24.8, 16 otherwise; a larger
+    /// value is taken as that many, so the count is then in units of 2^-F); the
+    /// configuration allows 1..=8 ([`crate::raster::MAX_SUBPIXEL_BITS`]), exact in every format.
     /// Monotone: `a <= b` implies `snap(a) <= snap(b)`, so snapping keeps convex polygons
     /// monotone in y.
     fn snap(self, bits: u32) -> Option<i32>;
 
     /// `self + step * n`, the incremental depth step over `n` pixels or rows.
     ///
-    /// For Q16.16 this wraps, so it is exact modulo 2^32: however far a plane is extrapolated
+    /// In fixed point this wraps, so it is exact modulo 2^32 LSB: however far a plane is extrapolated
     /// on the way, a depth that is in range at a sample inside the polygon comes out exact,
     /// and stepping one pixel at a time gives the same bits as stepping `n` at once.
     fn step(self, step: Self, n: i32) -> Self;
@@ -109,7 +133,7 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     /// A plane's depth as [`DepthPlane::at_unwrapped`] gives it, for comparisons only.
     type Unwrapped: PartialOrd + Copy;
     /// The plane's depth at pixel (`i`, `j`) without wrapping, extrapolated from `anchor`.
-    /// Q16.16: the raw value in 64 bits, `at(anchor) + dzdx·(i − ai) + dzdy·(j − aj)`, exact
+    /// Fixed point: the raw value in 64 bits, `at(anchor) + dzdx·(i − ai) + dzdy·(j − aj)`, exact
     /// for any two pixels of a screen (offsets below 2^16, steps below 2^31); `plane.z_ref`
     /// itself may have wrapped, its reference pixel lying off the polygon. f32:
     /// [`DepthPlane::at`] (it never wraps).
@@ -117,7 +141,7 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
 
     /// `a0 + (a1 − a0) · (bound − c0) / (c1 − c0)`: the value of an attribute `a` where a
     /// coordinate `c` going from `c0` to `c1` crosses `bound` (a clip plane). Computed wide
-    /// (Q16.16: 128-bit integers, rounded once), so no intermediate overflows.
+    /// (fixed point: 128-bit integers, rounded once), so no intermediate overflows.
     fn lerp_clip(a0: Self, a1: Self, c0: Self, c1: Self, bound: Self) -> Self;
 
     /// The depth plane through a polygon's snapped vertices (Newell's normal, so a polygon
@@ -126,10 +150,11 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     /// the top-left vertex, clockwise), so the same polygon gives the same bits whatever order
     /// its vertices came in.
     ///
-    /// - Q16.16: referenced at pixel (0, 0) and computed in 128-bit integers, each of `z_ref`,
-    ///   `dzdx`, `dzdy` rounded once from the exact plane, so **coplanar polygons get identical
-    ///   depth bits** and depth ties are exact ties. `z_ref` wraps (see [`Scalar::step`]).
-    ///   Error at pixel (i, j): at most 0.5·(1 + i + j) LSB.
+    /// - Fixed point (Q16.16, Q24.8): referenced at pixel (0, 0) and computed in 128-bit
+    ///   integers, each of `z_ref`, `dzdx`, `dzdy` rounded once from the exact plane, so
+    ///   **coplanar polygons get identical depth bits** and depth ties are exact ties. `z_ref`
+    ///   wraps (see [`Scalar::step`]). Error at pixel (i, j): at most 0.5·(1 + i + j) LSB —
+    ///   in Q24.8 (LSB 1/256) up to 0.94 depth units at the far corner of 240 × 240.
     /// - f32: referenced at the pixel of the first vertex (keeps values small, so little
     ///   cancellation); error a few ULP of the depths and gradients involved.
     fn depth_plane(v: &[RasterVertex<Self>], subpixel_bits: u32) -> Option<DepthPlane<Self>>;
@@ -173,117 +198,132 @@ fn newell(v: &[(i128, i128, i128)]) -> (i128, i128, i128) {
     (a, b, c)
 }
 
-impl Scalar for Q16_16 {
-    const NAME: &'static str = "q16.16";
-    const ZERO: Self = Q16_16::ZERO;
-    const ONE: Self = Q16_16::ONE;
-    const MAX: Self = Q16_16::MAX;
+/// One implementation for every signed 32-bit fixed-point format: `$t` is the type (a
+/// `fixed::FixedI32`), `$name` its report name. Everything works on the raw bits, scaled by
+/// the type's own fractional bits (`F = $t::FRAC_NBITS`), so Q16.16 and Q24.8 share each line.
+macro_rules! impl_fixed {
+    ($t:ident, $name:literal) => {
+        impl Scalar for $t {
+            const NAME: &'static str = $name;
+            const ZERO: Self = $t::ZERO;
+            const ONE: Self = $t::ONE;
+            const MAX: Self = $t::MAX;
 
-    fn from_f32(v: f32) -> Option<Self> {
-        Q16_16::checked_from_num(v)
-    }
-    fn to_f32(self) -> f32 {
-        self.to_num::<f32>()
-    }
-    fn to_f64(self) -> f64 {
-        self.to_num::<f64>()
-    }
-    fn is_finite(self) -> bool {
-        true
-    }
-    fn add(self, o: Self) -> Self {
-        self.saturating_add(o)
-    }
-    fn sub(self, o: Self) -> Self {
-        self.saturating_sub(o)
-    }
-    fn mul(self, o: Self) -> Self {
-        self.saturating_mul(o)
-    }
-    fn div(self, o: Self) -> Option<Self> {
-        self.checked_div(o)
-    }
-    fn sqrt(self) -> Self {
-        if self <= Self::ZERO {
-            return Self::ZERO;
+            fn from_f32(v: f32) -> Option<Self> {
+                $t::checked_from_num(v)
+            }
+            fn to_f32(self) -> f32 {
+                self.to_num::<f32>()
+            }
+            fn to_f64(self) -> f64 {
+                self.to_num::<f64>()
+            }
+            fn is_finite(self) -> bool {
+                true
+            }
+            fn add(self, o: Self) -> Self {
+                self.saturating_add(o)
+            }
+            fn sub(self, o: Self) -> Self {
+                self.saturating_sub(o)
+            }
+            fn mul(self, o: Self) -> Self {
+                self.saturating_mul(o)
+            }
+            fn div(self, o: Self) -> Option<Self> {
+                self.checked_div(o)
+            }
+            fn sqrt(self) -> Self {
+                if self <= Self::ZERO {
+                    return Self::ZERO;
+                }
+                // bits = value·2^F; sqrt(value)·2^F = sqrt(bits·2^F). bits < 2^31 and F ≤ 16,
+                // so the product fits 47 bits and the root 24: it fits the format.
+                let root = ((self.to_bits() as u64) << $t::FRAC_NBITS).isqrt();
+                $t::from_bits(root as i32)
+            }
+            fn to_unit_u8(self) -> u8 {
+                let f = $t::FRAC_NBITS;
+                let b = self.to_bits().clamp(0, 1 << f) as u32;
+                ((b * 255) >> f) as u8
+            }
+            fn snap(self, bits: u32) -> Option<i32> {
+                let bits = bits.min($t::FRAC_NBITS);
+                let shift = $t::FRAC_NBITS - bits;
+                if shift == 0 {
+                    return Some(self.to_bits());
+                }
+                let raw = self.to_bits() as i64;
+                Some(((raw + (1 << (shift - 1))) >> shift) as i32)
+            }
+            #[inline]
+            fn step(self, step: Self, n: i32) -> Self {
+                self.wrapping_add(step.wrapping_mul_int(n))
+            }
+            type Unwrapped = i64;
+            #[inline]
+            fn unwrapped(p: &DepthPlane<Self>, (ai, aj): (i32, i32), i: i32, j: i32) -> i64 {
+                // 32 × 32 → 64-bit products (one SMULL/SMLAL each on a Cortex-M4); the
+                // offsets fit 32 bits for any two pixels of a screen.
+                let (di, dj) = (i.wrapping_sub(ai) as i64, j.wrapping_sub(aj) as i64);
+                let raw = |v: Self| v.to_bits() as i64;
+                raw(p.at(ai, aj))
+                    .wrapping_add(raw(p.dzdx).wrapping_mul(di))
+                    .wrapping_add(raw(p.dzdy).wrapping_mul(dj))
+            }
+            fn lerp_clip(a0: Self, a1: Self, c0: Self, c1: Self, bound: Self) -> Self {
+                let r = |v: Self| v.to_bits() as i128;
+                let (mut num, mut den) = (r(bound) - r(c0), r(c1) - r(c0));
+                if den == 0 {
+                    return a0;
+                }
+                if den < 0 {
+                    (num, den) = (-num, -den);
+                }
+                $t::from_bits(sat_i32(r(a0) + div_round((r(a1) - r(a0)) * num, den)))
+            }
+            fn depth_plane(
+                v: &[RasterVertex<Self>],
+                subpixel_bits: u32,
+            ) -> Option<DepthPlane<Self>> {
+                let mut pts = [(0i128, 0i128, 0i128); crate::raster::MAX_POLYGON_VERTICES];
+                let n = v.len().min(pts.len());
+                if n < 3 {
+                    return None;
+                }
+                for (p, q) in pts.iter_mut().zip(v) {
+                    *p = (q.x as i128, q.y as i128, q.z.to_bits() as i128);
+                }
+                let (a, b, c) = newell(&pts[..n]);
+                if c == 0 {
+                    return None;
+                }
+                // Normalise so the denominator is positive: the plane is the same.
+                let (a, b, c) = if c < 0 { (-a, -b, -c) } else { (a, b, c) };
+                let s = subpixel_bits;
+                let (x0, y0, z0) = pts[0];
+                // Pixel (0, 0)'s centre: z − z0 = −(A·(x − x0) + B·(y − y0)) / C, x and y
+                // in sub-pixels, z in raw bits (the format's LSB).
+                let half = 1i128 << s >> 1;
+                let z_ref = z0 + div_round(-(a * (half - x0) + b * (half - y0)), c);
+                let dzdx = div_round(-(a << s), c);
+                let dzdy = div_round(-(b << s), c);
+                let (i_ref, j_ref) = (0, 0);
+                Some(DepthPlane {
+                    // Wraps: exact modulo 2^32, like every later step.
+                    z_ref: $t::from_bits(z_ref as i32),
+                    dzdx: $t::from_bits(sat_i32(dzdx)),
+                    dzdy: $t::from_bits(sat_i32(dzdy)),
+                    i_ref,
+                    j_ref,
+                })
+            }
         }
-        // 16.16 → value·2^16; sqrt(value)·2^16 = sqrt(bits·2^16).
-        let root = ((self.to_bits() as u64) << 16).isqrt();
-        Q16_16::from_bits(root as i32)
-    }
-    fn to_unit_u8(self) -> u8 {
-        let b = self.to_bits().clamp(0, 1 << 16) as u32;
-        ((b * 255) >> 16) as u8
-    }
-    fn snap(self, bits: u32) -> Option<i32> {
-        let bits = bits.min(16);
-        let shift = 16 - bits;
-        if shift == 0 {
-            return Some(self.to_bits());
-        }
-        let raw = self.to_bits() as i64;
-        Some(((raw + (1 << (shift - 1))) >> shift) as i32)
-    }
-    #[inline]
-    fn step(self, step: Self, n: i32) -> Self {
-        self.wrapping_add(step.wrapping_mul_int(n))
-    }
-    type Unwrapped = i64;
-    #[inline]
-    fn unwrapped(p: &DepthPlane<Self>, (ai, aj): (i32, i32), i: i32, j: i32) -> i64 {
-        // 32 × 32 → 64-bit products (one SMULL/SMLAL each on a Cortex-M4); the offsets fit
-        // 32 bits for any two pixels of a screen.
-        let (di, dj) = (i.wrapping_sub(ai) as i64, j.wrapping_sub(aj) as i64);
-        let raw = |v: Self| v.to_bits() as i64;
-        raw(p.at(ai, aj))
-            .wrapping_add(raw(p.dzdx).wrapping_mul(di))
-            .wrapping_add(raw(p.dzdy).wrapping_mul(dj))
-    }
-    fn lerp_clip(a0: Self, a1: Self, c0: Self, c1: Self, bound: Self) -> Self {
-        let r = |v: Self| v.to_bits() as i128;
-        let (mut num, mut den) = (r(bound) - r(c0), r(c1) - r(c0));
-        if den == 0 {
-            return a0;
-        }
-        if den < 0 {
-            (num, den) = (-num, -den);
-        }
-        Q16_16::from_bits(sat_i32(r(a0) + div_round((r(a1) - r(a0)) * num, den)))
-    }
-    fn depth_plane(v: &[RasterVertex<Self>], subpixel_bits: u32) -> Option<DepthPlane<Self>> {
-        let mut pts = [(0i128, 0i128, 0i128); crate::raster::MAX_POLYGON_VERTICES];
-        let n = v.len().min(pts.len());
-        if n < 3 {
-            return None;
-        }
-        for (p, q) in pts.iter_mut().zip(v) {
-            *p = (q.x as i128, q.y as i128, q.z.to_bits() as i128);
-        }
-        let (a, b, c) = newell(&pts[..n]);
-        if c == 0 {
-            return None;
-        }
-        // Normalise so the denominator is positive: the plane is the same.
-        let (a, b, c) = if c < 0 { (-a, -b, -c) } else { (a, b, c) };
-        let s = subpixel_bits;
-        let (x0, y0, z0) = pts[0];
-        // Pixel (0, 0)'s centre: z − z0 = −(A·(x − x0) + B·(y − y0)) / C, x and y in
-        // sub-pixels, z in raw bits.
-        let half = 1i128 << s >> 1;
-        let z_ref = z0 + div_round(-(a * (half - x0) + b * (half - y0)), c);
-        let dzdx = div_round(-(a << s), c);
-        let dzdy = div_round(-(b << s), c);
-        let (i_ref, j_ref) = (0, 0);
-        Some(DepthPlane {
-            // Wraps: exact modulo 2^32, like every later step.
-            z_ref: Q16_16::from_bits(z_ref as i32),
-            dzdx: Q16_16::from_bits(sat_i32(dzdx)),
-            dzdy: Q16_16::from_bits(sat_i32(dzdy)),
-            i_ref,
-            j_ref,
-        })
-    }
+    };
 }
+
+impl_fixed!(Q16_16, "q16.16");
+impl_fixed!(Q24_8, "q24.8");
 
 /// Floor of a finite `f32` as `i64` (no `floor` in `core`).
 fn floor_f32(t: f32) -> i64 {
@@ -431,18 +471,143 @@ impl Scalar for f32 {
 mod tests {
     use super::*;
 
-    #[test]
-    fn q16_16_sqrt_is_floor_exact() {
-        for bits in [0i32, 1, 2, 1 << 16, 2 << 16, 12345678, i32::MAX] {
-            let v = Q16_16::from_bits(bits);
-            let r = Scalar::sqrt(v).to_bits() as i64;
-            let target = (bits as i64) << 16;
-            assert!(
-                r * r <= target && (r + 1) * (r + 1) > target,
-                "sqrt({bits})"
-            );
-        }
+    /// The same unit tests for every fixed-point format: `$t` and its fractional bits `$f`
+    /// (written out, not read from the type, so a wrong shift in `impl_fixed!` shows).
+    macro_rules! fixed_tests {
+        ($m:ident, $t:ident, $f:literal, $name:literal) => {
+            mod $m {
+                use super::super::*;
+
+                #[test]
+                fn name_and_fraction() {
+                    assert_eq!(<$t as Scalar>::NAME, $name);
+                    assert_eq!(<$t as Scalar>::ONE.to_bits(), 1 << $f);
+                    assert_eq!(
+                        <$t as Scalar>::from_f32(0.5).map($t::to_bits),
+                        Some(1 << ($f - 1))
+                    );
+                    // Range: 2^(31 − F); just past it is refused, not wrapped.
+                    let top = (1u64 << (31 - $f)) as f32;
+                    assert_eq!(<$t as Scalar>::from_f32(top), None);
+                    assert_eq!(
+                        <$t as Scalar>::from_f32(-top).map($t::to_bits),
+                        Some(i32::MIN)
+                    );
+                    assert_eq!(<$t as Scalar>::from_f32(f32::NAN), None);
+                }
+
+                #[test]
+                fn sqrt_is_floor_exact() {
+                    for bits in [0i32, 1, 2, 3, 1 << $f, 2 << $f, 4 << $f, 12345678, i32::MAX] {
+                        let r = Scalar::sqrt($t::from_bits(bits)).to_bits() as i64;
+                        let target = (bits as i64) << $f;
+                        assert!(
+                            r * r <= target && (r + 1) * (r + 1) > target,
+                            "sqrt({bits})"
+                        );
+                    }
+                    assert_eq!(Scalar::sqrt($t::from_num(9)), $t::from_num(3));
+                    assert_eq!(Scalar::sqrt($t::from_num(-4)), $t::ZERO);
+                }
+
+                #[test]
+                fn to_unit_u8_scales_and_clamps() {
+                    let u = |v: f32| <$t as Scalar>::from_f32(v).unwrap().to_unit_u8();
+                    assert_eq!(u(1.0), 255);
+                    assert_eq!(u(0.5), 127);
+                    assert_eq!(u(0.0), 0);
+                    assert_eq!(u(-3.0), 0);
+                    assert_eq!(u(7.0), 255);
+                    // One LSB below 1: 255·(1 − 2^-F), truncated.
+                    assert_eq!($t::from_bits((1 << $f) - 1).to_unit_u8(), 254);
+                }
+
+                #[test]
+                fn snap_rounds_to_nearest_ties_up_and_is_monotone() {
+                    let q = |v: f32| <$t as Scalar>::from_f32(v).unwrap();
+                    assert_eq!(q(1.5).snap(4), Some(24));
+                    assert_eq!(q(-0.03125).snap(4), Some(0)); // -0.5 sub-pixel rounds up
+                    assert_eq!(q(0.03125).snap(4), Some(1)); // +0.5 sub-pixel rounds up
+                    assert_eq!(q(-0.09375).snap(4), Some(-1)); // -1.5 sub-pixels rounds up
+                                                               // One LSB under a half sub-pixel rounds down; at 8 bits snapping is exact
+                                                               // (the 1/256 grid), in both formats.
+                    let lsb = $t::from_bits(1);
+                    assert_eq!(q(0.03125).sub(lsb).snap(4), Some(0));
+                    assert_eq!(q(-2.75).snap(8), Some(-704));
+                    assert_eq!(q(1.0 / 256.0).snap(8), Some(1));
+                    // More bits than the format has: the raw value (the `bits.min(F)` rule).
+                    assert_eq!(q(1.5).snap($f + 4), Some(3 << ($f - 1)));
+                    // The extremes fit an i32 at every grid.
+                    for bits in 1..=$f {
+                        assert!($t::MIN.snap(bits).is_some() && $t::MAX.snap(bits).is_some());
+                    }
+                    for bits in [1, 4, 8] {
+                        let mut last = i32::MIN;
+                        for raw in (-3 << $f)..(3 << $f) {
+                            let s = $t::from_bits(raw).snap(bits).unwrap();
+                            assert!(s >= last, "snap not monotone at {raw} ({bits} bits)");
+                            let exact = raw as f64 / (1u64 << $f) as f64 * (1u64 << bits) as f64;
+                            assert!((s as f64 - exact).abs() <= 0.5, "{raw} at {bits} bits");
+                            last = s;
+                        }
+                    }
+                }
+
+                #[test]
+                fn step_is_exact_modulo_wrap() {
+                    // Extrapolate far outside the range and come back: the result is exact.
+                    let z = $t::from_num(5);
+                    let dz = $t::from_bits(1 << 27); // 2^(27 − F) per step
+                    let far = z.step(dz, 100); // 100 · 2^27 does not fit 32 bits: wraps
+                    assert_eq!(far.step(dz, -100), z);
+                    let mut walked = z;
+                    for _ in 0..100 {
+                        walked = walked.step(dz, 1);
+                    }
+                    assert_eq!(walked, far);
+                }
+
+                #[test]
+                fn depth_plane_is_exact_on_the_grid() {
+                    // z = 2 + x/4 − y/8 (x, y in pixels): exact in both formats. Vertices in
+                    // 8-bit sub-pixels, listed clockwise on the display.
+                    let v = |x: i32, y: i32| RasterVertex {
+                        x: x << 8,
+                        y: y << 8,
+                        z: <$t as Scalar>::from_f32(2.0 + x as f32 / 4.0 - y as f32 / 8.0).unwrap(),
+                    };
+                    let p = <$t as Scalar>::depth_plane(&[v(0, 0), v(16, 0), v(0, 16)], 8).unwrap();
+                    assert_eq!(p.dzdx.to_bits(), 1 << ($f - 2));
+                    assert_eq!(p.dzdy.to_bits(), -(1 << ($f - 3)));
+                    // At pixel (3, 5)'s centre (3.5, 5.5): 2 + 0.875 − 0.6875.
+                    assert_eq!(p.at(3, 5), <$t as Scalar>::from_f32(2.1875).unwrap());
+                    assert_eq!(p.at_unwrapped((3, 5), 3, 5), p.at(3, 5).to_bits() as i64);
+                }
+
+                #[test]
+                fn lerp_clip_rounds_once() {
+                    let q = |v: f32| <$t as Scalar>::from_f32(v).unwrap();
+                    // a from 0 to 10 while c goes 0 → 4: at c = 1, a = 2.5.
+                    assert_eq!(
+                        $t::lerp_clip(q(0.0), q(10.0), q(0.0), q(4.0), q(1.0)),
+                        q(2.5)
+                    );
+                    // Descending: a = 10 at c = 4 down to 0 at c = 0; at c = 1, a = 2.5.
+                    assert_eq!(
+                        $t::lerp_clip(q(10.0), q(0.0), q(4.0), q(0.0), q(1.0)),
+                        q(2.5)
+                    );
+                    assert_eq!(
+                        $t::lerp_clip(q(7.0), q(1.0), q(2.0), q(2.0), q(2.0)),
+                        q(7.0)
+                    );
+                }
+            }
+        };
     }
+
+    fixed_tests!(q16_16, Q16_16, 16, "q16.16");
+    fixed_tests!(q24_8, Q24_8, 8, "q24.8");
 
     #[test]
     fn f32_sqrt_within_one_ulp() {
@@ -457,10 +622,7 @@ mod tests {
     }
 
     #[test]
-    fn snap_rounds_to_nearest_and_is_monotone() {
-        let q = |v: f32| Q16_16::from_f32(v).unwrap();
-        assert_eq!(q(1.5).snap(4), Some(24));
-        assert_eq!(q(-0.03125).snap(4), Some(0)); // -0.5 sub-pixel rounds up
+    fn f32_snap_rounds_to_nearest_and_is_monotone() {
         assert_eq!(1.5f32.snap(4), Some(24));
         assert_eq!((-0.03125f32).snap(4), Some(0));
         assert_eq!(f32::NAN.snap(4), None);
@@ -473,14 +635,5 @@ mod tests {
             last = s;
             v += 0.001;
         }
-    }
-
-    #[test]
-    fn q16_16_step_is_exact_modulo_wrap() {
-        // Extrapolate far outside the range and come back: the result is exact.
-        let z = Q16_16::from_num(5);
-        let dz = Q16_16::from_num(1000);
-        let far = z.step(dz, 100); // 100_005 does not fit: wraps
-        assert_eq!(far.step(dz, -100), z);
     }
 }

@@ -150,6 +150,7 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize> Ordered<N, W, P,
         sink: &mut K,
     ) -> Result<FrameStats, RenderError<K::Error>> {
         self.prepare(scene, cfg)?;
+        let cue = crate::shading::Cue::for_rows(scene, cfg)?;
         let stats = FrameStats {
             polygons: self.table.len() as u32,
             edges: self.table.edge_count() as u32,
@@ -159,6 +160,7 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize> Ordered<N, W, P,
             &self.table,
             self.order.iter().map(|&i| i as usize),
             cfg,
+            &cue,
             &mut self.depth,
             &mut self.intensity,
             sink,

@@ -332,6 +332,7 @@ pub fn paint_in_order<N: Scalar, const P: usize, const E: usize, K: RowSink<N>>(
     t: &PolygonTable<N, P, E>,
     order: impl Iterator<Item = usize> + Clone,
     cfg: &Config,
+    cue: &Option<crate::shading::Cue<N>>,
     depth: &mut [N],
     intensity: &mut [Rgb565],
     sink: &mut K,
@@ -348,6 +349,7 @@ pub fn paint_in_order<N: Scalar, const P: usize, const E: usize, K: RowSink<N>>(
                 paint_span(depth, intensity, &p.plane, p.color, y, xl, xr);
             }
         }
+        crate::shading::Cue::shade_row_if_perspective(cue, depth, intensity);
         sink.write_row(&Row {
             y: y as u16,
             intensity,

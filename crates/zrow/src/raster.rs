@@ -83,10 +83,19 @@ pub struct Config {
     pub cull: Cull,
     /// Colour where nothing is drawn.
     pub background: Rgb565,
+    /// How model-mode perspective depth is stored: affine in 1/w (exact, the default) or
+    /// linear in w (see [`crate::geometry::DepthMapping`]).
+    pub depth: crate::geometry::DepthMapping,
+    /// Flat faces, or intensity falling with distance (depth cueing), interpolated affinely
+    /// or perspective-correctly ([`crate::shading`]).
+    pub shading: crate::shading::Shading,
+    /// The square roots of lighting: exact or micromath ([`crate::math::MathLib`]).
+    pub math: crate::math::MathLib,
 }
 
 impl Config {
-    /// Screen-space defaults: 8 sub-pixel bits, no culling, black background.
+    /// Screen-space defaults: 8 sub-pixel bits, no culling, black background, depth affine in
+    /// 1/w, flat shading, exact square roots.
     pub const fn screen(width: u16, height: u16) -> Self {
         Config {
             width,
@@ -94,6 +103,9 @@ impl Config {
             subpixel_bits: 8,
             cull: Cull::None,
             background: Rgb565::new(0, 0, 0),
+            depth: crate::geometry::DepthMapping::InverseW,
+            shading: crate::shading::Shading::Flat,
+            math: crate::math::MathLib::Libm,
         }
     }
     /// Model-mode defaults: as [`Config::screen`] with back faces culled.
@@ -110,6 +122,7 @@ impl Config {
             || self.height > MAX_VIEWPORT
             || self.subpixel_bits == 0
             || self.subpixel_bits > MAX_SUBPIXEL_BITS
+            || !self.shading.is_valid()
         {
             return Err(Error::BadConfig);
         }
@@ -205,6 +218,17 @@ pub struct Dda {
 }
 
 impl Dda {
+    /// Where the edge crosses the current row's sample line, in pixel columns (pixel `i`'s
+    /// centre is `i`): `x − r/den`, rounded to the format.
+    pub fn crossing<N: Scalar>(&self) -> N {
+        let frac = if self.den > 0 {
+            self.r as f32 / self.den as f32
+        } else {
+            0.0
+        };
+        N::from_f32(self.x as f32 - frac).unwrap_or(N::ZERO)
+    }
+
     /// Moves to the next row.
     #[inline]
     pub fn step(&mut self) {

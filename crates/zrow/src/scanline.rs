@@ -30,11 +30,13 @@
 //! Every capacity is checked while the tables are built, before the first row is sent.
 
 use crate::error::{Error, RenderError, Table};
+use crate::geometry::shade;
 use crate::method::{FrameStats, Renderer};
 use crate::number::{DepthPlane, Scalar};
 use crate::raster::{setup, Config, Dda, Edge, Side};
 use crate::requirements::Requirements;
 use crate::scene::Scene;
+use crate::shading::{Cue, Interpolation};
 use crate::sink::{Row, RowSink};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use heapless::binary_heap::{BinaryHeap, Min};
@@ -71,6 +73,12 @@ struct Active<N> {
     poly: u16,
     color: Rgb565,
     fresh: bool,
+    /// Affine depth cue only: the factor where the left and right edges cross this row, and
+    /// its change per row down each edge (Gouraud).
+    cue_left: N,
+    cue_left_dy: N,
+    cue_right: N,
+    cue_right_dy: N,
 }
 
 /// The scan-line renderer.
@@ -92,6 +100,8 @@ pub struct Scanline<N, const W: usize, const P: usize, const E: usize, const A: 
     last_rows: Vec<i16, A>,
     depth: [N; W],
     intensity: [Rgb565; W],
+    /// This frame's depth cue, if shading is not flat.
+    cue: Option<Cue<N>>,
 }
 
 impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize> Default
@@ -124,6 +134,7 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
             // are rewritten in full before each is sent.
             depth: [N::ZERO; W],
             intensity: [Rgb565::BLACK; W],
+            cue: None,
         }
     }
 
@@ -150,6 +161,7 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
         cfg: &Config,
     ) -> Result<FrameStats, Error> {
         cfg.validate(W)?;
+        self.cue = Cue::for_frame(scene, cfg)?;
         self.polygons.clear();
         self.edges.clear();
         self.active.clear();
@@ -261,7 +273,7 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
                 .filter(|e| e.first_row as i32 == y)
             {
                 cursor += 1;
-                self.activate(e.poly, e.side, e.dda_at(y, s), e.last_row);
+                self.activate(&e, y, s);
             }
             // This row's spans, and the depth at each span's left end.
             for a in self.active.iter_mut() {
@@ -277,6 +289,11 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
             }
             self.sort_active();
             self.resolve_row(width, cfg.background, stats);
+            Cue::shade_row_if_perspective(
+                &self.cue,
+                &self.depth[..width],
+                &mut self.intensity[..width],
+            );
             sink.write_row(&Row {
                 y: y as u16,
                 intensity: &self.intensity[..width],
@@ -287,7 +304,34 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
         Ok(())
     }
 
-    fn activate(&mut self, poly: u16, side: Side, dda: Dda, last: i16) {
+    fn activate(&mut self, e: &Edge, y: i32, s: u32) {
+        let (poly, side, dda, last) = (e.poly, e.side, e.dda_at(y, s), e.last_row);
+        // Affine cue: the exact factor where the edge crosses its first and last rows, and
+        // the linear step between (the seeds' incremental intensity down an edge).
+        let (mut cue, mut cue_dy) = (N::ZERO, N::ZERO);
+        if let Some(c) = self
+            .cue
+            .filter(|c| c.interpolation == Interpolation::Affine)
+        {
+            let plane = &self.polygons[poly as usize].plane;
+            let on_edge = |d: &Dda, row: i32| {
+                let z = plane.at(d.x, row);
+                c.at_depth(
+                    z.sub(
+                        plane
+                            .dzdx
+                            .mul(N::from_f32(d.x as f32).unwrap_or(N::ZERO).sub(d.crossing())),
+                    ),
+                )
+            };
+            cue = on_edge(&dda, y);
+            let rows = last as i32 - y;
+            if rows > 0 {
+                let end = on_edge(&e.dda_at(last as i32, s), last as i32);
+                let n = N::from_f32(rows as f32).unwrap_or(N::ONE);
+                cue_dy = end.sub(cue).div(n).unwrap_or(N::ZERO);
+            }
+        }
         let entry = &mut self.polygons[poly as usize];
         if entry.slot == NONE {
             let a = Active {
@@ -304,6 +348,10 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
                 poly,
                 color: entry.color,
                 fresh: true,
+                cue_left: N::ZERO,
+                cue_left_dy: N::ZERO,
+                cue_right: N::ZERO,
+                cue_right_dy: N::ZERO,
             };
             // Cannot fail: `max_active` checked the capacity for every row.
             if self.active.push(a).is_err() {
@@ -313,8 +361,14 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
         }
         let a = &mut self.active[entry.slot as usize];
         match side {
-            Side::Left => (a.left, a.left_last) = (dda, last),
-            Side::Right => (a.right, a.right_last) = (dda, last),
+            Side::Left => {
+                (a.left, a.left_last) = (dda, last);
+                (a.cue_left, a.cue_left_dy) = (cue, cue_dy);
+            }
+            Side::Right => {
+                (a.right, a.right_last) = (dda, last);
+                (a.cue_right, a.cue_right_dy) = (cue, cue_dy);
+            }
         }
     }
 
@@ -357,9 +411,11 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
             }
             if a.left_last as i32 > y {
                 a.left.step();
+                a.cue_left = a.cue_left.add(a.cue_left_dy);
             }
             if a.right_last as i32 > y {
                 a.right.step();
+                a.cue_right = a.cue_right.add(a.cue_right_dy);
             }
             i += 1;
         }
@@ -380,6 +436,9 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
     /// The open polygons sit in a min-heap on their span's end (retiring costs O(log n)).
     fn resolve_row(&mut self, width: usize, background: Rgb565, stats: &mut FrameStats) {
         let w = width as i32;
+        let affine = self
+            .cue
+            .is_some_and(|c| c.interpolation == Interpolation::Affine);
         let (active, open) = (&self.active, &mut self.open);
         open.clear();
         let (mut cur, mut k) = (0i32, 0usize);
@@ -409,6 +468,9 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
                 Some((p, until)) => {
                     let next = next_start.min(active[p].xr).min(until).min(w);
                     fill(&mut self.depth, &mut self.intensity, &active[p], cur, next);
+                    if affine {
+                        cue_span(&mut self.intensity, &active[p], cur, next);
+                    }
                     next
                 }
                 None => {
@@ -454,6 +516,23 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize> 
 #[inline]
 fn depth_at<N: Scalar>(a: &Active<N>, x: i32) -> N {
     a.z_left.step(a.dzdx, x - a.xl)
+}
+
+/// Affine depth cue across `x0..x1` (already filled with the polygon's colour): the factor
+/// interpolated linearly between the edges' crossings of the row (one division per span).
+fn cue_span<N: Scalar>(intensity: &mut [Rgb565], a: &Active<N>, x0: i32, x1: i32) {
+    let (cl, cr) = (a.left.crossing::<N>(), a.right.crossing::<N>());
+    let slope = a
+        .cue_right
+        .sub(a.cue_left)
+        .div(cr.sub(cl))
+        .unwrap_or(N::ZERO);
+    let at = |x: i32| N::from_f32(x as f32).unwrap_or(N::ZERO);
+    let mut f = a.cue_left.add(at(x0).sub(cl).mul(slope));
+    for c in &mut intensity[x0 as usize..x1 as usize] {
+        *c = shade(*c, f);
+        f = f.add(slope);
+    }
 }
 
 /// Fills `x0..x1` with one polygon, stepping its depth one pixel at a time.

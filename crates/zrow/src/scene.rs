@@ -200,9 +200,20 @@ impl<N: Scalar> Camera<N> {
         Some(Camera { view, projection })
     }
 
-    /// A perspective projection from a vertical field of view in radians.
+    /// A perspective projection from a vertical field of view in radians (tangent by
+    /// micromath; see [`Camera::perspective_with`]).
     pub fn perspective(fov_y: f32, near: f32, far: f32) -> Option<Projection<N>> {
-        let focal = 1.0 / micromath::F32Ext::tan(fov_y * 0.5);
+        Self::perspective_with(crate::math::MathLib::Micromath, fov_y, near, far)
+    }
+
+    /// [`Camera::perspective`] with the tangent from `math`.
+    pub fn perspective_with(
+        math: crate::math::MathLib,
+        fov_y: f32,
+        near: f32,
+        far: f32,
+    ) -> Option<Projection<N>> {
+        let focal = 1.0 / math.tan(fov_y * 0.5);
         Some(Projection::Perspective {
             focal: N::from_f32(focal)?,
             near: N::from_f32(near)?,
@@ -248,4 +259,11 @@ pub trait Scene<N: Scalar> {
         cfg: &Config,
         f: &mut dyn FnMut(&RasterPolygon<N>) -> Result<(), Error>,
     ) -> Result<(), Error>;
+
+    /// How stored depth maps back to view distance under `cfg`, for stages after visibility
+    /// (depth cueing). `None` if the scene has no notion of distance (then shading is flat).
+    fn view_depth(&self, cfg: &Config) -> Option<crate::geometry::ViewDepth<N>> {
+        let _ = cfg;
+        None
+    }
 }

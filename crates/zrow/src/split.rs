@@ -340,11 +340,13 @@ impl<N: Scalar, const Q: usize> Pieces<N, Q> {
 
 /// Paints pieces in `order` (first = farthest) row by row — the painter's algorithm with one
 /// row of memory — and sends each row to `sink`, top to bottom.
+#[allow(clippy::too_many_arguments)] // the frame's inputs and the row buffers, each used once
 pub fn paint_rows<N: Scalar, K: RowSink<N>, const P: usize, const E: usize, const Q: usize>(
     t: &PolygonTable<N, P, E>,
     pieces: &Pieces<N, Q>,
     order: &[u16],
     cfg: &Config,
+    cue: &Option<crate::shading::Cue<N>>,
     depth: &mut [N],
     intensity: &mut [embedded_graphics_core::pixelcolor::Rgb565],
     sink: &mut K,
@@ -370,6 +372,7 @@ pub fn paint_rows<N: Scalar, K: RowSink<N>, const P: usize, const E: usize, cons
                 xr,
             );
         }
+        crate::shading::Cue::shade_row_if_perspective(cue, &depth[..w], &mut intensity[..w]);
         sink.write_row(&Row {
             y: y as u16,
             intensity: &intensity[..w],

@@ -230,6 +230,7 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize>
     ) -> Result<FrameStats, RenderError<K::Error>> {
         cfg.validate(W)?;
         self.table.build(scene, cfg, false)?;
+        let cue = crate::shading::Cue::for_rows(scene, cfg)?;
         let (w, h) = (cfg.width as usize, cfg.height as usize);
         let levels = self.quantise(cfg);
         let mut stats = FrameStats {
@@ -242,7 +243,7 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize>
             let y1 = (y0 + B).min(h);
             self.fill_band(y0, y1, w, &levels);
             stats.areas += 1;
-            self.send_band(y0, y1, w, cfg.background, sink)
+            self.send_band(y0, y1, w, cfg.background, &cue, sink)
                 .map_err(RenderError::Sink)?;
             y0 = y1;
         }
@@ -397,6 +398,7 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize>
         y1: usize,
         w: usize,
         background: Rgb565,
+        cue: &Option<crate::shading::Cue<N>>,
         sink: &mut K,
     ) -> Result<(), K::Error> {
         let polys = self.table.polygons();
@@ -423,6 +425,11 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize>
                 *d = z;
                 last = o;
             }
+            crate::shading::Cue::shade_row_if_perspective(
+                cue,
+                &self.depth_row[..w],
+                &mut self.color_row[..w],
+            );
             sink.write_row(&Row {
                 y: y as u16,
                 intensity: &self.color_row[..w],

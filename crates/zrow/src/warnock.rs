@@ -221,6 +221,7 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, 
     ) -> Result<FrameStats, RenderError<K::Error>> {
         cfg.validate(W)?;
         self.table.build(scene, cfg, false)?;
+        let cue = crate::shading::Cue::for_rows(scene, cfg)?;
         let (w, h) = (cfg.width as i32, cfg.height as i32);
         let needed = self.needed(h);
         if needed as usize > L {
@@ -262,8 +263,13 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, 
             }
             for y in band_y0..band_y1 {
                 let r = (y - band_y0) as usize;
-                if let (Some(c), Some(d)) = (self.color.get(r), self.depth.get(r)) {
+                if let (Some(c), Some(d)) = (self.color.get_mut(r), self.depth.get(r)) {
                     // In bounds: `cfg.validate(W)` checked width <= W.
+                    crate::shading::Cue::shade_row_if_perspective(
+                        &cue,
+                        &d[..w as usize],
+                        &mut c[..w as usize],
+                    );
                     let row = Row {
                         y: y as u16,
                         intensity: &c[..w as usize],

@@ -66,6 +66,7 @@ impl<N: Scalar, const W: usize, const H: usize> ZBuffer<N, W, H> {
             }
             .into());
         }
+        let cue = crate::shading::Cue::for_rows(scene, cfg)?;
         let (w, h) = (cfg.width as usize, cfg.height as usize);
         for row in &mut self.depth[..h] {
             row[..w].fill(N::MAX);
@@ -101,6 +102,11 @@ impl<N: Scalar, const W: usize, const H: usize> ZBuffer<N, W, H> {
             Ok(())
         })?;
         for y in 0..h {
+            crate::shading::Cue::shade_row_if_perspective(
+                &cue,
+                &self.depth[y][..w],
+                &mut self.intensity[y][..w],
+            );
             sink.write_row(&Row {
                 y: y as u16,
                 intensity: &self.intensity[y][..w],

@@ -26,6 +26,7 @@
 //!   candidates' depths differ by more than the resolution. tests/methods.rs holds the exact
 //!   methods to the reference on random, dense and cyclic scenes, tests/tiled.rs the tiled
 //!   method, tests/auto.rs cull-only and ordered where their preconditions hold.
+#![allow(clippy::unnecessary_lazy_evaluations, clippy::needless_range_loop)]
 
 mod common;
 use common::*;

@@ -2,9 +2,12 @@
 //! EXTREMES items 20 and 23):
 //!
 //! - on random, dense and cyclic-overlap scenes each exact method draws the exact reference's
-//!   picture, except where the reference itself calls a depth tie;
-//! - in Q16.16 they agree with the scan-line method on every visible depth bit too (they all
-//!   evaluate the same planes);
+//!   picture, except where the reference itself calls a depth tie — in fixed point two planes
+//!   closer than the stated plane error ([`tie_tolerance`] over the screen's `W + H`: Q16.16
+//!   89·2^-16, Q24.8 89/256 depth units), in f32 within 2e-3;
+//! - in fixed point (Q16.16 and Q24.8) their frames equal the scan-line method's bit for bit,
+//!   colour and depth, ties included (they all evaluate the same plane bits and keep the
+//!   first polygon on equal bits);
 //! - whatever the input — any bit pattern, bad indices, any face size — each returns a frame
 //!   or a typed error, never panics, and sends no row after an error.
 
@@ -16,7 +19,7 @@ use zrow::abuffer::ABuffer;
 use zrow::bsp::Bsp;
 use zrow::depthsort::DepthSort;
 use zrow::warnock::Warnock;
-use zrow::{Config, Renderer, Scalar, Scanline, ZBuffer, Q16_16};
+use zrow::{Config, Renderer, Scalar, Scanline, ZBuffer, Q16_16, Q24_8};
 
 const W: u16 = 48;
 const H: u16 = 40;
@@ -35,13 +38,23 @@ macro_rules! each_exact_method {
     }};
 }
 
-/// The method's frame equals the reference; in Q16.16 its visible depths equal the
-/// scan-line method's bit for bit.
+/// The depth difference under which the reference calls a pixel a tie. Fixed point: the
+/// stated bound, derived from the format's LSB — each plane is within 0.5·(1 + i + j) LSB at
+/// pixel (i, j) and i + j < W + H on screen, so two planes further apart than
+/// `tie_tolerance(W + H)` are always in the right order. f32: 2e-3.
+fn tie<N: Scalar>() -> f64 {
+    match lsb::<N>() {
+        Some(_) => tie_tolerance::<N>((W + H) as usize),
+        None => 2.0 * tie_tolerance::<N>(4 * (W + H) as usize),
+    }
+}
+
+/// The method's frame equals the reference; in fixed point it equals the scan-line method's
+/// bit for bit (every pixel's colour and depth).
 fn equals_reference<N: Scalar, R: Renderer<N> + Default>(p: &Polys) {
     let cfg = Config::screen(W, H);
     let cap = p.render_with(&mut *Box::<R>::default(), &cfg).unwrap();
-    let tol = tie_tolerance::<N>(4 * (W + H) as usize);
-    let refr = reference::<N>(p, &cfg, 2.0 * tol);
+    let refr = reference::<N>(p, &cfg, tie::<N>());
     let bad = mismatches(&cap, &refr);
     assert!(
         bad.is_empty(),
@@ -51,16 +64,20 @@ fn equals_reference<N: Scalar, R: Renderer<N> + Default>(p: &Polys) {
         bad.len(),
         &bad[..bad.len().min(5)]
     );
-    if N::NAME == Q16_16::NAME {
+    if lsb::<N>().is_some() {
         let scan = p.render::<N>(&cfg).unwrap();
         for (i, v) in refr.iter().enumerate() {
-            if let Verdict::Visible(..) = v {
-                assert!(
-                    cap.depth[i] == scan.depth[i],
-                    "{}: depth bits differ from the scan-line method's at pixel {i}",
-                    R::NAME
-                );
-            }
+            assert!(
+                cap.color[i] == scan.color[i] && cap.depth[i] == scan.depth[i],
+                "{} {}: pixel {i} ({v:?}) differs from the scan-line method's: {:?} at {:?}, \
+                 scan-line {:?} at {:?}",
+                R::NAME,
+                N::NAME,
+                index_of(cap.color[i]),
+                cap.depth[i],
+                index_of(scan.color[i]),
+                scan.depth[i]
+            );
         }
     }
 }
@@ -87,6 +104,11 @@ proptest! {
     }
 
     #[test]
+    fn every_method_equals_the_reference_q24_8(polys in prop::collection::vec(polygon(), 1..16)) {
+        each_exact_method!(equals_reference::<Q24_8>(&Polys::new(polys.clone())));
+    }
+
+    #[test]
     fn every_method_equals_the_reference_f32(polys in prop::collection::vec(polygon(), 1..16)) {
         each_exact_method!(equals_reference::<f32>(&Polys::new(polys.clone())));
     }
@@ -98,6 +120,7 @@ fn every_method_on_dense_and_cyclic_scenes() {
     for _ in 0..6 {
         let p = scenes::dense(&mut rng, 8, W as f32, H as f32);
         each_exact_method!(equals_reference::<Q16_16>(&p));
+        each_exact_method!(equals_reference::<Q24_8>(&p));
         each_exact_method!(equals_reference::<f32>(&p));
     }
     for shift in [0.0, 0.5] {
@@ -105,6 +128,7 @@ fn every_method_on_dense_and_cyclic_scenes() {
         // The cyclic scene is 48×48.
         assert!(p.polys.iter().flatten().all(|v| v[1] < 48.0));
         each_exact_method!(equals_reference::<Q16_16>(&p));
+        each_exact_method!(equals_reference::<Q24_8>(&p));
         each_exact_method!(equals_reference::<f32>(&p));
     }
 }
@@ -112,13 +136,17 @@ fn every_method_on_dense_and_cyclic_scenes() {
 /// Small steep triangles crowded together: their planes wrap in Q16.16 a few dozen pixels
 /// away, so BSP and depth-sort must judge sides on the planes' own values (the Foley
 /// comparison's 512×512 scenes once showed 665 wrong pixels from BSP, and each exact method
-/// failed this test before `PolygonTable::beats` compared planes unwrapped).
+/// failed this test before `PolygonTable::beats` compared planes unwrapped). Q24.8 gets the
+/// same scenes with depths 256 times deeper, so its planes wrap alike.
 #[test]
 fn every_method_on_steep_planes_far_from_their_origin() {
     let mut rng = XorShift(0x5_7ee9);
     for _ in 0..8 {
+        let seed = rng.0;
         let p = scenes::steep(&mut rng, 24, W as f32, H as f32);
         each_exact_method!(equals_reference::<Q16_16>(&p));
+        let p = scenes::steep_to(&mut XorShift(seed), 24, W as f32, H as f32, 256.0 * 30000.0);
+        each_exact_method!(equals_reference::<Q24_8>(&p));
     }
 }
 
@@ -157,6 +185,12 @@ mod no_panic {
         }
 
         #[test]
+        fn any_q24_8_input(bits in prop::collection::vec(any::<[i32; 3]>(), 0..9), faces in faces()) {
+            let v: Vec<_> = bits.iter().map(|b| Vec3::new(Q24_8::from_bits(b[0]), Q24_8::from_bits(b[1]), Q24_8::from_bits(b[2]))).collect();
+            each_exact_method!(run::<Q24_8>(&v, &faces));
+        }
+
+        #[test]
         fn any_f32_input(bits in prop::collection::vec(any::<[u32; 3]>(), 0..9), faces in faces()) {
             let v: Vec<_> = bits.iter().map(|b| Vec3::new(f32::from_bits(b[0]), f32::from_bits(b[1]), f32::from_bits(b[2]))).collect();
             each_exact_method!(run::<f32>(&v, &faces));
@@ -166,8 +200,10 @@ mod no_panic {
         fn small_coordinates(pts in prop::collection::vec(any::<[i16; 3]>(), 3..9), faces in faces()) {
             let v: Vec<Vec3<f32>> = pts.iter().map(|p| Vec3::new(p[0] as f32 / 256.0, p[1] as f32 / 256.0, p[2] as f32 / 256.0)).collect();
             let q: Vec<Vec3<Q16_16>> = v.iter().map(|p| Vec3::from_f32([p.x, p.y, p.z]).unwrap()).collect();
+            let q24: Vec<Vec3<Q24_8>> = v.iter().map(|p| Vec3::from_f32([p.x, p.y, p.z]).unwrap()).collect();
             each_exact_method!(run::<f32>(&v, &faces));
             each_exact_method!(run::<Q16_16>(&q, &faces));
+            each_exact_method!(run::<Q24_8>(&q24, &faces));
         }
     }
 }

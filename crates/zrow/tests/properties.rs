@@ -1,15 +1,16 @@
 //! Property tests: the scan-line renderer equals the exact reference on random scenes.
 //!
 //! Vertices lie on the 1/256 grid, so snapping at 8 bits is the identity and the reference's
-//! coverage is exact: every pixel must match except where the reference itself calls a depth
-//! tie (the two nearest polygons closer than the format's stated depth error). Visible depths
-//! must be within that error too.
+//! coverage is exact in every format: every pixel must match except where the reference
+//! itself calls a depth tie (the two nearest polygons closer than the format's stated depth
+//! error). Visible depths must be within that error too: in fixed point (Q16.16, Q24.8) the
+//! stated bound of `Scalar::depth_plane` itself, 0.5·(1 + i + j) LSB at pixel (i, j).
 
 mod common;
 use common::Rng as XorShift;
 use common::*;
 use proptest::prelude::*;
-use zrow::{Config, Scalar, Q16_16};
+use zrow::{Config, Scalar, Q16_16, Q24_8};
 
 const W: u16 = 48;
 const H: u16 = 40;
@@ -46,8 +47,16 @@ fn scene() -> impl Strategy<Value = Polys> {
 fn check<N: Scalar>(p: &Polys) -> Result<(), TestCaseError> {
     let cfg = Config::screen(W, H);
     let cap = p.render::<N>(&cfg).unwrap();
-    let tol = tie_tolerance::<N>((W + H) as usize + 4 * MARGIN as usize);
-    let refr = reference::<N>(p, &cfg, 2.0 * tol);
+    // Fixed point: each plane is within 0.5·(1 + i + j) LSB at pixel (i, j), and i + j < W + H
+    // on screen, so planes further apart than tie_tolerance(W + H) are in the right order.
+    let (tie, lsb) = match lsb::<N>() {
+        Some(lsb) => (tie_tolerance::<N>((W + H) as usize), lsb),
+        None => (
+            2.0 * tie_tolerance::<N>((W + H) as usize + 4 * MARGIN as usize),
+            0.0,
+        ),
+    };
+    let refr = reference::<N>(p, &cfg, tie);
     let bad = mismatches(&cap, &refr);
     prop_assert!(
         bad.is_empty(),
@@ -60,10 +69,11 @@ fn check<N: Scalar>(p: &Polys) -> Result<(), TestCaseError> {
             if let Verdict::Visible(_, z) = refr[y * W as usize + x] {
                 let got = cap.z(x, y).to_f32() as f64;
                 let err = (got - z).abs();
-                let allowed = if N::NAME == "f32" {
-                    1e-3 * (1.0 + z.abs())
+                let allowed = if lsb > 0.0 {
+                    // The stated bound; 1e-9 for the reference's own f64 rounding.
+                    0.5 * (1.0 + (x + y) as f64) * lsb + 1e-9
                 } else {
-                    tol
+                    1e-3 * (1.0 + z.abs())
                 };
                 prop_assert!(err <= allowed, "depth at ({x},{y}): got {got}, exact {z}");
             }
@@ -78,6 +88,11 @@ proptest! {
     #[test]
     fn scanline_equals_reference_q16_16(p in scene()) {
         check::<Q16_16>(&p)?;
+    }
+
+    #[test]
+    fn scanline_equals_reference_q24_8(p in scene()) {
+        check::<Q24_8>(&p)?;
     }
 
     #[test]
@@ -110,11 +125,12 @@ fn dense_interpenetration_equals_reference() {
         }
         let p = Polys::new(polys);
         check::<Q16_16>(&p).unwrap();
+        check::<Q24_8>(&p).unwrap();
         check::<f32>(&p).unwrap();
     }
 }
 
-/// Any input at all: every Q16.16 bit pattern, every f32 (NaN, ±inf, subnormals, ±3e38),
+/// Any input at all: every Q16.16 and Q24.8 bit pattern, every f32 (NaN, ±inf, subnormals, ±3e38),
 /// indices in and out of range, faces of 0..12 vertices, model or screen mode. The renderer
 /// returns a frame or a typed error; it never panics (these run in debug, where overflow
 /// would) and never sends a row after an error.
@@ -185,6 +201,12 @@ mod no_panic {
         }
 
         #[test]
+        fn any_q24_8_input(bits in prop::collection::vec(any::<[i32; 3]>(), 0..9), faces in faces(), model in any::<bool>()) {
+            let v = bits.iter().map(|b| Vec3::new(Q24_8::from_bits(b[0]), Q24_8::from_bits(b[1]), Q24_8::from_bits(b[2]))).collect();
+            run::<Q24_8>(v, faces, model);
+        }
+
+        #[test]
         fn any_f32_input(bits in prop::collection::vec(any::<[u32; 3]>(), 0..9), faces in faces(), model in any::<bool>()) {
             let v = bits.iter().map(|b| Vec3::new(f32::from_bits(b[0]), f32::from_bits(b[1]), f32::from_bits(b[2]))).collect();
             run::<f32>(v, faces, model);
@@ -195,8 +217,10 @@ mod no_panic {
             // Plausible magnitudes (±128 px / units) so most faces reach the raster stage.
             let v: Vec<Vec3<f32>> = pts.iter().map(|p| Vec3::new(p[0] as f32 / 256.0, p[1] as f32 / 256.0, p[2] as f32 / 256.0)).collect();
             let q: Vec<Vec3<Q16_16>> = v.iter().map(|p| Vec3::from_f32([p.x, p.y, p.z]).unwrap()).collect();
+            let q24: Vec<Vec3<Q24_8>> = v.iter().map(|p| Vec3::from_f32([p.x, p.y, p.z]).unwrap()).collect();
             run::<f32>(v, faces.clone(), model);
-            run::<Q16_16>(q, faces, model);
+            run::<Q16_16>(q, faces.clone(), model);
+            run::<Q24_8>(q24, faces, model);
         }
     }
 }

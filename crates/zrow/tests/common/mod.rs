@@ -143,14 +143,16 @@ impl Polys {
 }
 
 /// The exact reference's verdict for one pixel.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Verdict {
     /// Nothing covers the sample.
     Empty,
     /// Polygon `i` is visible, at depth `z`.
     Visible(usize, f64),
-    /// Two polygons are within the depth tolerance of each other: either may win.
-    Tie(usize, usize),
+    /// Polygons within the depth tolerance of the nearest one (nearest first, then by
+    /// depth; two or more): any of them may win. With coarse depth (Q24.8) three or more
+    /// polygons within the tolerance are common, and each is a legitimate winner.
+    Tie(Vec<usize>),
 }
 
 /// Snaps like the renderer does (the convention, tested separately): round to the nearest
@@ -241,12 +243,16 @@ pub fn reference<N: Scalar>(p: &Polys, cfg: &Config, tie: f64) -> Vec<Verdict> {
             hits.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
             out[j * w + i] = match hits.as_slice() {
                 [] => Verdict::Empty,
-                [(z, k)] => Verdict::Visible(*k, *z),
-                [(z0, k0), (z1, k1), ..] => {
-                    if z1 - z0 <= tie {
-                        Verdict::Tie(*k0, *k1)
-                    } else {
+                [(z0, k0), rest @ ..] => {
+                    let near: Vec<usize> = rest
+                        .iter()
+                        .take_while(|(z, _)| z - z0 <= tie)
+                        .map(|&(_, k)| k)
+                        .collect();
+                    if near.is_empty() {
                         Verdict::Visible(*k0, *z0)
+                    } else {
+                        Verdict::Tie([*k0].into_iter().chain(near).collect())
                     }
                 }
             };
@@ -264,27 +270,42 @@ pub fn mismatches<N: Scalar>(
     for y in 0..cap.height {
         for x in 0..cap.width {
             let got = index_of(cap.at(x, y));
-            let want = refr[y * cap.width + x];
+            let want = &refr[y * cap.width + x];
             let ok = match want {
                 Verdict::Empty => got.is_none(),
-                Verdict::Visible(k, _) => got == Some(k),
-                Verdict::Tie(a, b) => got == Some(a) || got == Some(b),
+                Verdict::Visible(k, _) => got == Some(*k),
+                Verdict::Tie(ks) => got.is_some_and(|g| ks.contains(&g)),
             };
             if !ok {
-                bad.push((x, y, want, got));
+                bad.push((x, y, want.clone(), got));
             }
         }
     }
     bad
 }
 
-/// Depth tolerance of a format for frames up to `extent` pixels across: Q16.16 steps are
-/// within 0.5 LSB per pixel or row stepped from the reference pixel plus 0.5 LSB at it.
-pub fn tie_tolerance<N: Scalar>(extent: usize) -> f64 {
+/// The LSB of a fixed-point format, found from the format itself: the smallest power of two
+/// it holds exactly (2^-16 for Q16.16, 2^-8 for Q24.8). `None` for floating point.
+pub fn lsb<N: Scalar>() -> Option<f64> {
     if N::NAME == "f32" {
-        1e-3
-    } else {
-        (1.0 + extent as f64) / 65536.0
+        return None;
+    }
+    let exact = |k: i32| {
+        let v = 2f64.powi(-k);
+        N::from_f32(v as f32).map(N::to_f64) == Some(v)
+    };
+    let frac = (0..32).take_while(|&k| exact(k)).last()?;
+    Some(2f64.powi(-frac))
+}
+
+/// Depth tolerance of a format for frames up to `extent` pixels across (`extent` ≥ i + j at
+/// every compared pixel): in fixed point a plane's depth at pixel (i, j) is within
+/// 0.5·(1 + i + j) LSB (`Scalar::depth_plane`), so two planes' order is right wherever they
+/// are more than (1 + extent) LSB apart. f32: 1e-3.
+pub fn tie_tolerance<N: Scalar>(extent: usize) -> f64 {
+    match lsb::<N>() {
+        None => 1e-3,
+        Some(lsb) => (1.0 + extent as f64) * lsb,
     }
 }
 
@@ -396,6 +417,12 @@ pub mod scenes {
     /// Deciding sides of a plane far from its polygon (BSP's classification, splitting) must
     /// not depend on those wrapped values.
     pub fn steep(rng: &mut Rng, n: usize, w: f32, h: f32) -> Polys {
+        steep_to(rng, n, w, h, 30000.0)
+    }
+
+    /// As [`steep`], depths in 0..`zmax` (for a format of another range: Q24.8's planes
+    /// leave it the same way with `zmax` = 256 · 30000).
+    pub fn steep_to(rng: &mut Rng, n: usize, w: f32, h: f32, zmax: f32) -> Polys {
         let grid = |v: f32| (v * 256.0).round() / 256.0;
         let mut polys = Vec::new();
         for _ in 0..n {
@@ -404,7 +431,7 @@ pub mod scenes {
                 [
                     grid(cx + rng.f(-6.0, 6.0)),
                     grid(cy + rng.f(-6.0, 6.0)),
-                    grid(rng.f(0.0, 30000.0)),
+                    grid(rng.f(0.0, zmax)),
                 ]
             };
             polys.push(vec![v(), v(), v()]);

@@ -1,0 +1,82 @@
+//! The scenes in every number format: the Q24.8 arrays are the f32 positions rounded to the
+//! nearest 1/256, and every scene renders in Q24.8, covering what Q16.16 covers wherever the
+//! positions are on the 1/256 grid (coverage never depends on the format, GUIDE §1).
+
+use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+use zrow::{FrameBuffer, Scalar, Scanline, Vec3, Q16_16, Q24_8};
+use zrow_scenes::Format;
+
+/// Every position array of a format, by name.
+fn arrays<N: Format>() -> [(&'static str, &'static [Vec3<N>]); 6] {
+    [
+        ("cube", N::cube()),
+        ("torus", N::torus()),
+        ("random400", N::random400()),
+        ("ring", N::ring()),
+        ("foley100", N::foley100()),
+        ("foley2500", N::foley2500()),
+    ]
+}
+
+#[test]
+fn fixed_positions_are_the_f32_positions_rounded_to_nearest() {
+    fn check<N: Format>(lsb: f64) {
+        for ((name, f), (_, q)) in arrays::<f32>().into_iter().zip(arrays::<N>()) {
+            assert_eq!(f.len(), q.len(), "{name}");
+            for (a, b) in f.iter().zip(q) {
+                for (x, y) in [(a.x, b.x), (a.y, b.y), (a.z, b.z)] {
+                    let (x, y) = (x as f64, y.to_f64());
+                    // Nearest: within half an LSB, and on the format's grid.
+                    assert!((x - y).abs() <= lsb / 2.0, "{name} {}: {x} as {y}", N::NAME);
+                    assert_eq!((y / lsb).fract(), 0.0);
+                }
+            }
+        }
+    }
+    check::<Q16_16>(1.0 / 65536.0);
+    check::<Q24_8>(1.0 / 256.0);
+    // The comparison scenes' x and y are on the 1/256 grid: Q24.8 holds them exactly.
+    for (f, q) in [
+        (f32::foley100(), Q24_8::foley100()),
+        (f32::foley2500(), Q24_8::foley2500()),
+    ] {
+        assert!(f
+            .iter()
+            .zip(q)
+            .all(|(a, b)| a.x == b.x.to_f32() && a.y == b.y.to_f32()));
+    }
+}
+
+fn frame<N: Format>(name: &str) -> (Vec<Rgb565>, usize) {
+    let mut px = vec![Rgb565::BLACK; 240 * 240];
+    let mut r = Box::new(Scanline::<N, 240, 4096, 16384, 1024>::new());
+    let faces = zrow_scenes::with_scene::<N, _>(name, 0.3, |s, c, faces| {
+        r.render(s, c, &mut FrameBuffer::new(&mut px, 240))
+            .unwrap_or_else(|e| panic!("{name} in {}: {e:?}", N::NAME));
+        faces
+    })
+    .unwrap();
+    (px, faces)
+}
+
+#[test]
+fn every_scene_renders_in_q24_8() {
+    let names = zrow_scenes::NAMES
+        .iter()
+        .chain(&zrow_scenes::FOLEY)
+        .chain(&zrow_scenes::DEMOS);
+    for &name in names {
+        let (q24, faces24) = frame::<Q24_8>(name);
+        let (q16, faces16) = frame::<Q16_16>(name);
+        assert_eq!(faces24, faces16, "{name}");
+        let drawn = |f: &[Rgb565]| f.iter().filter(|&&p| p != Rgb565::BLACK).count();
+        assert!(drawn(&q24) > 0, "{name} draws nothing in q24.8");
+        if zrow_scenes::FOLEY.contains(&name) {
+            // Same snapped vertices in both formats: the same pixels are covered (only
+            // which surface is nearest may differ, where depths are closer than Q24.8's
+            // error).
+            let covered = |f: &[Rgb565]| f.iter().map(|&p| p != Rgb565::BLACK).collect::<Vec<_>>();
+            assert_eq!(covered(&q24), covered(&q16), "{name}");
+        }
+    }
+}
