@@ -62,7 +62,7 @@ fn plane_of<N: Scalar>(t: &[[f32; 3]]) -> Option<impl Fn(f64, f64) -> f64> {
         e1[0] * e2[1] - e1[1] * e2[0],
     );
     (c.abs() > 1e-9)
-        .then(move || move |x: f64, y: f64| v[0][2] - (a * (x - v[0][0]) + b * (y - v[0][1])) / c)
+        .then_some(move |x: f64, y: f64| v[0][2] - (a * (x - v[0][0]) + b * (y - v[0][1])) / c)
 }
 
 /// Worst depth error of `m` on random planes (triangles on the 1/256 grid over a 64×64
@@ -718,8 +718,8 @@ fn against_zbuffer<N: Scalar>(p: &Polys, cfg: &Config, what: &str) -> usize {
     let mut differ = 0;
     for m in &mut methods {
         let (cap, _, res) = m.polys_full(p, cfg).unwrap();
-        for k in 0..cap.color.len() {
-            let (a, b) = (index_of(want.color[k]), index_of(cap.color[k]));
+        for (k, (w, c)) in want.color.iter().zip(&cap.color).enumerate() {
+            let (a, b) = (index_of(*w), index_of(*c));
             if a == b {
                 continue;
             }

@@ -476,8 +476,13 @@ pub mod scenes {
 /// tiled 16-bit z-buffer's [`zrow::tiled::Quantisation::resolution`]).
 pub type Rendered<N> = (Capture<N>, zrow::FrameStats, f64);
 
-type RenderFn<N> =
-    Box<dyn FnMut(&dyn zrow::Scene<N>, &Config) -> Result<Rendered<N>, zrow::RenderError<()>>>;
+/// A render's outcome and the capture (whatever reached it, also after an error).
+pub type Outcome<N> = (
+    Result<(zrow::FrameStats, f64), zrow::RenderError<()>>,
+    Capture<N>,
+);
+
+type RenderFn<N> = Box<dyn FnMut(&dyn zrow::Scene<N>, &Config) -> Outcome<N>>;
 
 /// One hidden-surface method, boxed once and reused for every frame it renders (as on the
 /// device), behind one signature whatever its type and capacities.
@@ -494,8 +499,8 @@ impl<N: Scalar> Method<N> {
             name: R::NAME,
             render: Box::new(move |scene, cfg| {
                 let mut cap = Capture::new(cfg.width as usize, cfg.height as usize);
-                let stats = r.render(scene, cfg, &mut cap)?;
-                Ok((cap, stats, 0.0))
+                let stats = r.render(scene, cfg, &mut cap);
+                (stats.map(|s| (s, 0.0)), cap)
             }),
         }
     }
@@ -507,8 +512,8 @@ impl<N: Scalar> Method<N> {
             name: "tiled",
             render: Box::new(move |scene, cfg| {
                 let mut cap = Capture::new(cfg.width as usize, cfg.height as usize);
-                let stats = r.render(scene, cfg, &mut cap)?;
-                Ok((cap, stats, r.quantisation().resolution))
+                let stats = r.render(scene, cfg, &mut cap);
+                (stats.map(|s| (s, r.quantisation().resolution)), cap)
             }),
         }
     }
@@ -519,6 +524,13 @@ impl<N: Scalar> Method<N> {
         scene: &dyn zrow::Scene<N>,
         cfg: &Config,
     ) -> Result<Rendered<N>, zrow::RenderError<()>> {
+        let (r, cap) = (self.render)(scene, cfg);
+        r.map(|(stats, res)| (cap, stats, res))
+    }
+
+    /// Renders any scene and returns the outcome with whatever reached the capture (so a
+    /// test can check that no row was sent before an error).
+    pub fn outcome(&mut self, scene: &dyn zrow::Scene<N>, cfg: &Config) -> Outcome<N> {
         (self.render)(scene, cfg)
     }
 
@@ -533,7 +545,7 @@ impl<N: Scalar> Method<N> {
         p: &Polys,
         cfg: &Config,
     ) -> Result<Rendered<N>, zrow::RenderError<()>> {
-        p.with_scene(|s| (self.render)(s, cfg))
+        p.with_scene(|s| self.scene(s, cfg))
     }
 }
 
