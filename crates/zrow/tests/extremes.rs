@@ -31,13 +31,14 @@ use common::*;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use zrow::{
     Camera, Config, Error, Face, Mesh, RenderError, Scalar, Scanline, ScreenScene, Table, Vec3,
-    Q16_16,
+    Q16_16, Q24_8,
 };
 
 /// Runs a generic item for every number format (adding a format is one line here).
 macro_rules! for_formats {
     ($f:ident $(, $a:expr)*) => {{
         $f::<Q16_16>($($a),*);
+        $f::<Q24_8>($($a),*);
         $f::<f32>($($a),*);
     }};
 }

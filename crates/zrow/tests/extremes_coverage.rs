@@ -23,12 +23,13 @@ use common::*;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use zrow::raster::{RasterVertex, GUARD_BAND};
 use zrow::{Affine, Camera, Config, Error, Face, Mesh, ModelScene, Object, RenderError, Scalar};
-use zrow::{Light, Vec3, Q16_16};
+use zrow::{Light, Vec3, Q16_16, Q24_8};
 
 /// Runs a generic item for every number format (adding a format is one line here).
 macro_rules! for_formats {
     ($f:ident $(, $a:expr)*) => {{
         $f::<Q16_16>($($a),*);
+        $f::<Q24_8>($($a),*);
         $f::<f32>($($a),*);
     }};
 }

@@ -26,12 +26,13 @@ use zrow::ordered::Ordered;
 use zrow::raster::MAX_FACE_VERTICES;
 use zrow::warnock::Warnock;
 use zrow::{Affine, Camera, Config, Error, Face, Light, Mesh, ModelScene, Object, Projection};
-use zrow::{RenderError, Scalar, Scanline, ScreenScene, Vec3, ZBuffer, Q16_16};
+use zrow::{RenderError, Scalar, Scanline, ScreenScene, Vec3, ZBuffer, Q16_16, Q24_8};
 
 /// Runs a generic item for every number format (adding a format is one line here).
 macro_rules! for_formats {
     ($f:ident $(, $a:expr)*) => {{
         $f::<Q16_16>($($a),*);
+        $f::<Q24_8>($($a),*);
         $f::<f32>($($a),*);
     }};
 }
