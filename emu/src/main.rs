@@ -1,7 +1,8 @@
 //! zrow's emulated bench: renders each standard scene once per number format with the
 //! scan-line method, then the comparison scenes (Foley & van Dam's Table 15.3 at 100 and 2,500
-//! polygons) once with every compared method, on a QEMU Cortex-M (mps2-an386 = Cortex-M4F,
-//! mps2-an385 = Cortex-M3) and prints, per frame,
+//! polygons) once with every compared method, then every preset (`zrow::presets::PRESETS`) once
+//! on every preset scene (`zrow_scenes::PRESET_SCENES`), on a QEMU Cortex-M (mps2-an386 =
+//! Cortex-M4F, mps2-an385 = Cortex-M3) and prints, per frame,
 //!
 //! ```text
 //! method=NAME scene=NAME format=FMT tris=N instructions=? ram=BYTES hash=HEX
@@ -10,7 +11,10 @@
 //! - `method`: the renderer's `Renderer::NAME`. The standard scenes (`cube`, `mesh1k`,
 //!   `random400`, both formats) are drawn by `scanline` as before; the comparison scenes
 //!   (zrow-scenes' `FOLEY`: `foley100`, `foley2500`, Q16.16) by every method in
-//!   `src/methods.rs`, one line each there;
+//!   `src/methods.rs`, one line each there; a preset's frames are `preset:NAME`, drawn as
+//!   `zrow_scenes::with_preset_scene` builds and configures the scene, by the renderer its
+//!   depth store names (`src/presets.rs`; formats not listed there yet are skipped with a `#`
+//!   line);
 //! - `tris`: the scene's face count (zrow-scenes);
 //! - `instructions`: printed as `?` by the guest, which cannot count itself. The frame is
 //!   bracketed by calls to [`zrow_bench_start`] and [`zrow_bench_stop`]; the qemu-icount
@@ -19,7 +23,8 @@
 //! - `ram`: for `scanline`, `zrow::scanline::ram_bytes::<N>(&req)` with
 //!   `req = zrow::requirements(..)` measured here on the guest: the renderer's tables at
 //!   exactly the sizes this frame needs, plus its two rows. For the other methods, the
-//!   renderer's `RAM_BYTES` as built (capacities in `src/methods.rs`, sized for `foley2500`);
+//!   renderer's `RAM_BYTES` as built (capacities in `src/methods.rs`, sized for `foley2500`,
+//!   and `src/presets.rs`);
 //! - `hash`: FNV-1a 64 over every row's Rgb565 pixels as little-endian `u16`, top to bottom
 //!   ([`zrow_scenes::FrameHash`], the same function the host check uses), 16 hex digits.
 //!

@@ -1,12 +1,13 @@
 //! The emulated bench's frames rendered on the host: for each standard scene and number
-//! format (scan-line), then for each comparison scene and compared method (Q16.16), prints
+//! format (scan-line), then for each comparison scene and compared method (Q16.16), then for
+//! each preset the bench draws and preset scene (method `preset:NAME`), prints
 //!
 //! ```text
 //! method=NAME scene=NAME format=FMT tris=N hash=HEX
 //! ```
 //!
 //! with the same renderers (the standard one below, the compared ones from the bench's
-//! `src/methods.rs`, included), the same scenes (zrow-scenes, angle 0) and the same frame
+//! `src/methods.rs` and the presets' from its `src/presets.rs`, included), the same scenes (zrow-scenes, angle 0) and the same frame
 //! hash ([`zrow_scenes::FrameHash`]: FNV-1a 64 over every row's Rgb565 pixels as
 //! little-endian `u16`, top to bottom) as emu/src/main.rs. `emu/check.sh` compares these lines
 //! with the bench's: same core, different instruction set, same pixels.
