@@ -11,7 +11,7 @@
 //! - **cost**: host time per frame (median of repeated renders on this machine, release) and
 //!   the emulated Cortex-M4's instructions per frame (read from `emu/target/bench-m4.txt`,
 //!   lines `method=preset:NAME`; instructions, not cycles);
-//! - **error** against an exact `f64` reference ([`reference`]): coverage errors judged with
+//! - **error** against an exact `f64` reference ([`mod@reference`]): coverage errors judged with
 //!   the dEQP three-state rule (missing FULL pixels, extra NONE pixels), pixels showing the
 //!   wrong surface, depth error in LSB of the preset's depth format, intensity error in LSB of
 //!   the Rgb565 channels; plus per preset the pixels drawn twice or missed by a watertight fan
