@@ -163,15 +163,27 @@ fn run() -> Result<(), String> {
     Ok(())
 }
 
-/// Presets no other preset beats on both cost and error.
-fn pareto(rows: &[Row]) -> Vec<bool> {
-    let cost = |r: &Row| r.instructions().unwrap_or(r.host_us());
+/// Presets no other preset beats on both cost and error. Cost is the emulated M4's
+/// instructions where every preset has them, else host time; with M4 counts for only some
+/// presets, those without are not judged (`None`).
+fn pareto(rows: &[Row]) -> Vec<Option<bool>> {
+    let any_m4 = rows.iter().any(|r| r.instructions().is_some());
+    let cost = |r: &Row| {
+        if any_m4 {
+            r.instructions()
+        } else {
+            Some(r.host_us())
+        }
+    };
     rows.iter()
         .map(|a| {
-            !rows.iter().any(|b| {
-                (cost(b) <= cost(a) && b.error_pixels() <= a.error_pixels())
-                    && (cost(b) < cost(a) || b.error_pixels() < a.error_pixels())
-            })
+            let ca = cost(a)?;
+            Some(!rows.iter().any(|b| {
+                cost(b).is_some_and(|cb| {
+                    (cb <= ca && b.error_pixels() <= a.error_pixels())
+                        && (cb < ca || b.error_pixels() < a.error_pixels())
+                })
+            }))
         })
         .collect()
 }
@@ -218,7 +230,11 @@ fn report(rows: &[Row], emu: &std::path::Path, quick: bool) -> String {
             s,
             "| `{}` | {} | {} | {:.0} | {} | {:.1} | {:.1} | {:.1} | {:.1} | {:.2} | {:.2} / {:.3} | {} / {} | {:.2e} / {:.2e} |",
             r.preset.name,
-            if f { "**yes**" } else { "" },
+            match f {
+                Some(true) => "**yes**",
+                Some(false) => "",
+                None => "n/a (no M4 count)",
+            },
             r.instructions().map_or("—".into(), |i| format!("{:.2} M", i / 1e6)),
             r.host_us(),
             r.ram,

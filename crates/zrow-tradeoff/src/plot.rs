@@ -35,16 +35,17 @@ fn err(e: impl std::fmt::Display) -> String {
 /// Cost (emulated M4 instructions per frame, or host µs if the bench was not run) against
 /// pixels in error per frame (log scale, +1 so an exact preset shows).
 pub fn pareto(rows: &[Row], path: &Path) -> Result<(), String> {
-    let m4 = rows.iter().all(|r| r.instructions().is_some());
+    // M4 instructions if any preset has them (presets without are left out), else host µs.
+    let m4 = rows.iter().any(|r| r.instructions().is_some());
     let pts: Vec<(f64, f64, &str)> = rows
         .iter()
-        .map(|r| {
+        .filter_map(|r| {
             let x = if m4 {
-                r.instructions().unwrap_or(0.0) / 1e6
+                r.instructions()? / 1e6
             } else {
                 r.host_us()
             };
-            (x, r.error_pixels() + 1.0, r.preset.name)
+            Some((x, r.error_pixels() + 1.0, r.preset.name))
         })
         .collect();
     let xmax = pts.iter().map(|p| p.0).fold(0.0, f64::max) * 1.15;
