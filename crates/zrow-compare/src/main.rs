@@ -36,6 +36,7 @@
 
 mod bench;
 mod emu;
+mod font;
 mod plot;
 mod report;
 mod surfaces;

@@ -21,6 +21,9 @@
 //! against error, one point per preset) and prints the table. Options: `--out DIR`,
 //! `--emu FILE`, `--quick` (one scene, short timing: a smoke test, not a measurement).
 
+/// The PNG font loader, zrow-compare's own file (one copy for both tools).
+#[path = "../../zrow-compare/src/font.rs"]
+mod font;
 mod measure;
 mod plot;
 mod reference;

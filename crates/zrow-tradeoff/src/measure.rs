@@ -124,12 +124,11 @@ impl Rng {
 }
 
 /// One triangle of a fan, alone, in screen space.
-struct FanTriangle<'a> {
+struct FanTriangle {
     tri: [[f64; 2]; 3],
-    _fan: &'a (),
 }
 
-impl Build for FanTriangle<'_> {
+impl Build for FanTriangle {
     fn build<N: Scalar>(&self, f: &mut dyn FnMut(&dyn Scene<N>)) {
         let v: Vec<Vec3<N>> = self
             .tri
@@ -167,10 +166,9 @@ pub fn fan(p: &Preset, n: usize, seed: u64) -> Result<(u32, u32, u32), String> {
     let mut count = vec![0u32; S * S];
     let mut cfg = Config::screen(S as u16, S as u16);
     cfg.subpixel_bits = p.subpixel_bits;
-    let unit = ();
     for k in 0..n {
         let tri = [c, rim[k], rim[(k + 1) % n]];
-        let fr = render::run_ids(p, &FanTriangle { tri, _fan: &unit }, &cfg, S)?;
+        let fr = render::run_ids(p, &FanTriangle { tri }, &cfg, S)?;
         for (cnt, px) in count.iter_mut().zip(&fr.colour) {
             *cnt += render::face_of(*px).is_some() as u32;
         }
@@ -296,7 +294,6 @@ pub fn threshold(p: &Preset) -> Result<Threshold, String> {
     let cam = Cam::look_at([0.0; 3], [0.0, 0.0, -1.0], FOV_Y as f64, [n, f]);
     let half = 1.5 / PLANE_W * cam.focal * render::SIZE as f64 / 2.0;
     let c = render::SIZE as f64 / 2.0;
-    let mut measured = f64::NAN;
     let mut clean_from: Option<f64> = None;
     for k in -8..=8 {
         let delta = theory * 2f64.powf(k as f64 / 2.0);
@@ -317,9 +314,7 @@ pub fn threshold(p: &Preset) -> Result<Threshold, String> {
             clean_from = None;
         }
     }
-    if let Some(d) = clean_from {
-        measured = d;
-    }
+    let measured = clean_from.unwrap_or(f64::NAN);
     Ok(Threshold {
         theory,
         measured,

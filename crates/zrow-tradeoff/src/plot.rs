@@ -5,28 +5,9 @@
 
 use crate::Row;
 use plotters::prelude::*;
-use plotters::style::{register_font, FontStyle};
 use std::path::Path;
 
-/// The default font file.
-pub const DEFAULT_FONT: &str = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
-
-/// Registers the font as plotters' "sans-serif".
-pub fn init_font() -> Result<(), String> {
-    let path = std::env::var("ZROW_FONT").unwrap_or_else(|_| DEFAULT_FONT.into());
-    let bytes = std::fs::read(&path).map_err(|e| {
-        format!(
-            "font {path}: {e} (install it with `apt-get install fonts-dejavu-core`, or set \
-             ZROW_FONT to any .ttf file)"
-        )
-    })?;
-    register_font(
-        "sans-serif",
-        FontStyle::Normal,
-        Box::leak(bytes.into_boxed_slice()),
-    )
-    .map_err(|_| format!("font {path}: not a TrueType font plotters can read"))
-}
+pub use crate::font::init_font;
 
 fn err(e: impl std::fmt::Display) -> String {
     format!("plot: {e}")

@@ -159,20 +159,6 @@ pub fn run(p: &Preset, name: &str, time_for: Duration) -> Result<Rendered, Strin
     dispatch!(p, scene_run(p, name, time_for))
 }
 
-/// Calls its argument with a scene.
-type WithScene<'a, N> = &'a dyn Fn(&mut dyn FnMut(&dyn Scene<N>));
-
-fn generic_run<N: Scalar, R: Make<N>>(
-    scene: WithScene<'_, N>,
-    cfg: &Config,
-    size: usize,
-) -> Result<Frame, String> {
-    let mut r = R::make();
-    let mut out = Err("scene not built".to_string());
-    scene(&mut |s| out = draw(&mut *r, &IdScene(s), cfg, size));
-    out
-}
-
 /// A scene built in the preset's format by the caller.
 pub trait Build {
     /// Calls `f` with the scene in format `N`.
@@ -184,7 +170,10 @@ fn built<N: Scalar, R: Make<N>>(
     cfg: &Config,
     size: usize,
 ) -> Result<Frame, String> {
-    generic_run::<N, R>(&|f| b.build::<N>(f), cfg, size)
+    let mut r = R::make();
+    let mut out = Err("scene not built".to_string());
+    b.build::<N>(&mut |s| out = draw(&mut *r, &IdScene(s), cfg, size));
+    out
 }
 
 /// Renders a caller-built scene with the preset's types as an ID render (colours are face

@@ -314,15 +314,9 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
             .filter(|c| c.interpolation == Interpolation::Affine)
         {
             let plane = &self.polygons[poly as usize].plane;
+            // Depth at the crossing: the plane at column x, stepped back by the fraction.
             let on_edge = |d: &Dda, row: i32| {
-                let z = plane.at(d.x, row);
-                c.at_depth(
-                    z.sub(
-                        plane
-                            .dzdx
-                            .mul(N::from_f32(d.x as f32).unwrap_or(N::ZERO).sub(d.crossing())),
-                    ),
-                )
+                c.at_depth(plane.at(d.x, row).sub(plane.dzdx.mul(d.fraction())))
             };
             cue = on_edge(&dda, y);
             let rows = last as i32 - y;
