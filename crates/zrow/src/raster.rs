@@ -221,19 +221,21 @@ impl Dda {
     /// Where the edge crosses the current row's sample line, in pixel columns (pixel `i`'s
     /// centre is `i`): `x − r/den`, rounded to the format.
     pub fn crossing<N: Scalar>(&self) -> N {
-        N::from_f32(self.x as f32)
-            .unwrap_or(N::ZERO)
-            .sub(self.fraction())
+        // One conversion: this runs per span on the affine-cue path.
+        N::from_f32(self.x as f32 - self.fraction_f32()).unwrap_or(N::ZERO)
     }
 
     /// How far left of column `x`'s centre the edge crosses the row: `r/den`, in `0..1`.
     pub fn fraction<N: Scalar>(&self) -> N {
-        let f = if self.den > 0 {
+        N::from_f32(self.fraction_f32()).unwrap_or(N::ZERO)
+    }
+
+    fn fraction_f32(&self) -> f32 {
+        if self.den > 0 {
             self.r as f32 / self.den as f32
         } else {
             0.0
-        };
-        N::from_f32(f).unwrap_or(N::ZERO)
+        }
     }
 
     /// Moves to the next row.
