@@ -52,7 +52,7 @@ include!("presets.rs");
 
 /// The renderer the standard scenes use: 240-pixel rows, 1024 polygons, 3072 edges, 512
 /// active polygons — generous for them (the `ram=` field is what a frame really needs).
-type Standard<N> = Scanline<N, 240, 1024, 3072, 512>;
+type Standard<N> = Scanline<N, 240, 3072, 1024, 512>;
 
 /// How often the start marker ran (printed at the end: the optimiser cannot drop the counts,
 /// and the two markers' bodies differ, so LLVM cannot merge them into one address).

@@ -21,7 +21,7 @@ macro_rules! for_each_method {
     ($run:ident) => {
         $run!(zrow::depthsort::DepthSort<Q16_16, 240, FP, FE, 4_096>);
         $run!(zrow::ZBuffer<Q16_16, 240, 240>);
-        $run!(zrow::Scanline<Q16_16, 240, FP, FE, FA>);
+        $run!(zrow::Scanline<Q16_16, 240, FE, FP, FA>);
         $run!(zrow::bsp::Bsp<Q16_16, 240, FP, FE, 20_480, 8_192>);
         $run!(zrow::abuffer::ABuffer<Q16_16, 240, FP, FE, 16>);
         $run!(zrow::tiled::Tiled<Q16_16, 240, 16, FP, FE>);

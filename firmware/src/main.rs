@@ -38,7 +38,7 @@ const SYSCLK_HZ: u32 = 100_000_000;
 /// Renderer capacities for the demo scenes over a full turn (measured with
 /// `zrow::requirements`: the torus needs at most 462 polygons, 1,316 edges, 67 active;
 /// `crates/zrow-scenes/tests/demos.rs` checks every demo fits).
-type Renderer = Scanline<Q16_16, 240, 480, 1344, 72>;
+type Renderer = Scanline<Q16_16, 240, 1344, 480, 72>;
 
 static RENDERER: ConstStaticCell<Renderer> = ConstStaticCell::new(Renderer::new());
 static ROW_A: ConstStaticCell<[u8; ROW_BYTES]> = ConstStaticCell::new([0; ROW_BYTES]);

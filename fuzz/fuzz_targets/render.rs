@@ -58,7 +58,7 @@ fn run<N: Scalar, R: Renderer<N>>(r: &mut R, scene: &impl Scene<N>, cfg: &Config
 }
 
 fn every_method<N: Scalar>(scene: &impl Scene<N>, cfg: &Config) {
-    run(&mut Scanline::<N, 64, 16, 64, 16>::new(), scene, cfg);
+    run(&mut Scanline::<N, 64, 64, 16, 16>::new(), scene, cfg);
     run(&mut ZBuffer::<N, 64, 64>::new(), scene, cfg);
     run(&mut Tiled::<N, 64, 8, 16, 64>::new(), scene, cfg);
     run(&mut DepthSort::<N, 64, 16, 64, 256>::new(), scene, cfg);

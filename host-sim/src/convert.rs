@@ -60,7 +60,7 @@
 //! **Emit.** A Rust file of items (`include!`-able, no inner attributes; a build script's copy
 //! comes in with `zrow::include_mesh!`): `NAME`, `VERTICES`, `NORMALS`, `FACES` (`u8` or `u16`
 //! indices), `MESH` (`zrow::Mesh::with_normals`), the consts `WIDTH`, `HEIGHT`, `POLYGONS`,
-//! `EDGES`, `ACTIVE`, and `pub type Renderer = zrow::Scanline<N, WIDTH, POLYGONS, EDGES,
+//! `EDGES`, `VERTEX_SLOTS`, `ACTIVE`, and `pub type Renderer = zrow::Scanline<N, WIDTH, VERTEX_SLOTS, POLYGONS,
 //! ACTIVE>`, every public item documented, the whole report in a header comment. Colours are built with
 //! `embedded_graphics_core::pixelcolor::Rgb565::new`, so the including crate depends on
 //! `embedded-graphics-core` (as any zrow user does for its sink).
@@ -1113,6 +1113,7 @@ pub fn with_margin(req: &Requirements) -> Requirements {
     Requirements {
         polygons: m(req.polygons),
         edges: m(req.edges),
+        vertices: m(req.vertices),
         active_polygons: m(req.active_polygons),
         width: req.width,
     }
@@ -1217,7 +1218,12 @@ fn measure_all<N: Scalar>(
     // random small rotation, keep the new orientation when it needs at least as much.
     let mut rng = Rng(opts.seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
     stats.refined_max = stats.sampled_max;
-    let keys: [fn(&Requirements) -> u32; 3] = [|r| r.polygons, |r| r.edges, |r| r.active_polygons];
+    let keys: [fn(&Requirements) -> u32; 4] = [
+        |r| r.polygons,
+        |r| r.edges,
+        |r| r.vertices,
+        |r| r.active_polygons,
+    ];
     for key in keys {
         seen.sort_by_key(|(r, _)| std::cmp::Reverse(key(r)));
         let starts: Vec<(Requirements, Rot)> =
@@ -1242,6 +1248,7 @@ fn measure_all<N: Scalar>(
         let req = measure(&rot)?;
         if req.polygons > capacities.polygons
             || req.edges > capacities.edges
+            || req.vertices > capacities.vertices
             || req.active_polygons > capacities.active_polygons
         {
             stats.checked_exceeding += 1;
@@ -1392,11 +1399,20 @@ fn emit(c: &Converted, name: &str) -> String {
          pub const POLYGONS: usize = {};\n\
          /// Edge table capacity: most edges in any orientation, plus the margin.\n\
          pub const EDGES: usize = {};\n\
+         /// Vertex pool capacity (the scan-line method): most vertex slots in any orientation,\n\
+         /// plus the margin.\n\
+         pub const VERTEX_SLOTS: usize = {};\n\
          /// Active list capacity: most polygons crossing one row, plus the margin.\n\
          pub const ACTIVE: usize = {};\n\n\
          /// The scan-line renderer sized for this model: {} bytes of RAM.\n\
-         pub type Renderer = zrow::Scanline<{n_type}, WIDTH, POLYGONS, EDGES, ACTIVE>;",
-        r.size.0, r.size.1, cap.polygons, cap.edges, cap.active_polygons, r.scanline_ram
+         pub type Renderer = zrow::Scanline<{n_type}, WIDTH, VERTEX_SLOTS, POLYGONS, ACTIVE>;",
+        r.size.0,
+        r.size.1,
+        cap.polygons,
+        cap.edges,
+        cap.vertices,
+        cap.active_polygons,
+        r.scanline_ram
     );
     let _ = match r.cull_only_ram {
         Some(ram) => writeln!(

@@ -57,7 +57,7 @@ pub const DEMO_BSP_DEPTH: usize = 2048;
 
 /// The demo's renderer: 240-pixel rows and the capacities above (checked against every demo
 /// scene, turned, in both formats, culled or not, by a test).
-pub type DemoScanline<N> = Scanline<N, { SIZE as usize }, DEMO_POLYGONS, DEMO_EDGES, DEMO_ACTIVE>;
+pub type DemoScanline<N> = Scanline<N, { SIZE as usize }, DEMO_EDGES, DEMO_POLYGONS, DEMO_ACTIVE>;
 /// The demo's z-buffer (240×240).
 pub type DemoZBuffer<N> = zrow::ZBuffer<N, { SIZE as usize }, { SIZE as usize }>;
 /// The demo's depth-sort.

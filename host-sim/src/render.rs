@@ -33,7 +33,7 @@ pub const HOST_PIECES: usize = 65000;
 pub const HOST_BSP_DEPTH: usize = 16384;
 
 /// The scan-line renderer at the host's capacities.
-pub type HostScanline<N> = Scanline<N, HOST_WIDTH, HOST_POLYGONS, HOST_EDGES, HOST_ACTIVE>;
+pub type HostScanline<N> = Scanline<N, HOST_WIDTH, HOST_EDGES, HOST_POLYGONS, HOST_ACTIVE>;
 /// The z-buffer at the host's largest frame.
 pub type HostZBuffer<N> = zrow::ZBuffer<N, HOST_WIDTH, HOST_WIDTH>;
 /// Depth-sort at the host's capacities.

@@ -348,6 +348,7 @@ fn the_emitted_text_holds_exactly_the_converted_values() {
             ("HEIGHT", 240),
             ("POLYGONS", cap.polygons),
             ("EDGES", cap.edges),
+            ("VERTEX_SLOTS", cap.vertices),
             ("ACTIVE", cap.active_polygons),
         ] {
             assert!(
@@ -357,7 +358,7 @@ fn the_emitted_text_holds_exactly_the_converted_values() {
             );
         }
         assert!(c.rust.contains(
-            "pub type Renderer = zrow::Scanline<zrow::Q16_16, WIDTH, POLYGONS, EDGES, ACTIVE>;"
+            "pub type Renderer = zrow::Scanline<zrow::Q16_16, WIDTH, VERTEX_SLOTS, POLYGONS, ACTIVE>;"
         ));
         // Every public item is documented.
         let lines: Vec<&str> = c.rust.lines().collect();

@@ -11,7 +11,7 @@ use zrow_byo::{cube, torus};
 use zrow_sim::convert::random_rotations;
 use zrow_sim::model_render::{light, View};
 
-type Big = Scanline<Q16_16, 240, 2048, 8192, 512>;
+type Big = Scanline<Q16_16, 240, 8192, 2048, 512>;
 
 /// Renders `mesh` turned by `rot` with `R`, as the converter's views are set up.
 fn draw<R: Renderer<Q16_16>, I: MeshIndex>(

@@ -37,7 +37,7 @@ pub fn methods() -> Vec<Method> {
     vec![
         method::<DepthSort<Q16_16, SIZE, P, E, Q>>(Some(ram::depthsort)),
         method::<ZBuffer<Q16_16, SIZE, SIZE>>(Some(ram::zbuffer)),
-        method::<Scanline<Q16_16, SIZE, P, E, A>>(Some(ram::scanline)),
+        method::<Scanline<Q16_16, SIZE, E, P, A>>(Some(ram::scanline)),
         method::<Bsp<Q16_16, SIZE, P, E, Q, D>>(Some(ram::bsp)),
         method::<ABuffer<Q16_16, SIZE, P, E, 16>>(Some(ram::abuffer)),
         method::<Tiled<Q16_16, SIZE, 16, P, E>>(Some(ram::tiled)),

@@ -31,7 +31,7 @@
 //! use zrow::{FrameBuffer, Q16_16, Scanline};
 //! use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 //! let mut pixels = vec![Rgb565::BLACK; 240 * 240];
-//! let mut renderer = Box::new(Scanline::<Q16_16, 240, 64, 256, 64>::new());
+//! let mut renderer = Box::new(Scanline::<Q16_16, 240, 256, 64, 64>::new());
 //! let faces = zrow_scenes::with_scene::<Q16_16, _>("cube", 0.0, |scene, cfg, faces| {
 //!     renderer.render(scene, cfg, &mut FrameBuffer::new(&mut pixels, 240)).unwrap();
 //!     faces
@@ -325,6 +325,8 @@ impl FrameHash {
 
 impl<N> zrow::RowSink<N> for FrameHash {
     type Error = core::convert::Infallible;
+    /// Colours only.
+    const WANTS_DEPTH: bool = false;
     fn write_row(&mut self, row: &zrow::Row<'_, N>) -> Result<(), Self::Error> {
         self.add(row.intensity);
         Ok(())

@@ -16,7 +16,7 @@ fn demos_fit_the_board_renderer_over_a_full_turn() {
             .unwrap();
             worst = worst.max(req);
         }
-        // firmware/src/main.rs: Scanline<Q16_16, 240, 480, 1344, 72>.
+        // firmware/src/main.rs: Scanline<Q16_16, 240, 1344, 480, 72>.
         assert!(
             worst.polygons <= 480 && worst.edges <= 1344 && worst.active_polygons <= 72,
             "{name}: {worst:?}"
@@ -27,7 +27,7 @@ fn demos_fit_the_board_renderer_over_a_full_turn() {
 
 #[test]
 fn interlocked_rings_intersect() {
-    let mut r = Box::new(Scanline::<Q16_16, 240, 1024, 4096, 256>::new());
+    let mut r = Box::new(Scanline::<Q16_16, 240, 4096, 1024, 256>::new());
     let stats = zrow_scenes::with_scene::<Q16_16, _>("interlocked", 0.5, |scene, cfg, faces| {
         assert_eq!(faces, 2 * 256 + 6);
         r.render(scene, cfg, &mut zrow_scenes::FrameHash::default())

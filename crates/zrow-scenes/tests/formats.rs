@@ -49,7 +49,7 @@ fn fixed_positions_are_the_f32_positions_rounded_to_nearest() {
 
 fn frame<N: Format>(name: &str) -> (Vec<Rgb565>, usize) {
     let mut px = vec![Rgb565::BLACK; 240 * 240];
-    let mut r = Box::new(Scanline::<N, 240, 4096, 16384, 1024>::new());
+    let mut r = Box::new(Scanline::<N, 240, 16384, 4096, 1024>::new());
     let faces = zrow_scenes::with_scene::<N, _>(name, 0.3, |s, c, faces| {
         r.render(s, c, &mut FrameBuffer::new(&mut px, 240))
             .unwrap_or_else(|e| panic!("{name} in {}: {e:?}", N::NAME));

@@ -28,7 +28,7 @@
 //!
 //!     let mut panel = St7789Rows::<_, _, B>::new(spi, dc, WINDOW).unwrap();
 //!     panel.init(delay).map_err(RenderError::Sink)?;
-//!     let mut renderer = Scanline::<Q16_16, 240, 4, 8, 4>::new();
+//!     let mut renderer = Scanline::<Q16_16, 240, 8, 4, 4>::new();
 //!     panel.begin_frame().map_err(RenderError::Sink)?; // once per frame
 //!     renderer.render(&scene, &Config::screen(240, 240), &mut panel)?;
 //!     Ok(())

@@ -151,7 +151,7 @@ fn renderer_reports_the_sink_error() {
     let scene = ScreenScene {
         mesh: Mesh::new(&vertices, &faces),
     };
-    let mut r = Scanline::<Q16_16, 64, 4, 8, 4>::new();
+    let mut r = Scanline::<Q16_16, 64, 8, 4, 4>::new();
     let bus = MockBus::new();
     let mut p = panel::<128>(&bus, Window::new(64, 32)).unwrap();
     p.init(&mut bus.delay()).unwrap();

@@ -47,7 +47,7 @@ fn window_ramwr_and_rows_each_frame() {
     }
     let window = Window::new(240, 240);
 
-    let mut renderer = Box::new(Scanline::<Q16_16, 240, 1024, 4096, 512>::new());
+    let mut renderer = Box::new(Scanline::<Q16_16, 240, 4096, 1024, 512>::new());
     for (frame, name) in ["mesh1k", "mesh1k", "cube"].iter().enumerate() {
         let angle = frame as f32 * 0.4;
         let mut want = vec![Rgb565::BLACK; 240 * 240];

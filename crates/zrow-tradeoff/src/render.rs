@@ -85,7 +85,7 @@ pub struct Rendered {
 trait Make<N: Scalar>: Renderer<N> + Sized {
     fn make() -> Box<Self>;
 }
-impl<N: Scalar> Make<N> for Scanline<N, SIZE, P, E, A> {
+impl<N: Scalar> Make<N> for Scanline<N, SIZE, E, P, A> {
     fn make() -> Box<Self> {
         Box::new(Self::new())
     }
@@ -100,11 +100,11 @@ impl<N: Scalar> Make<N> for Tiled<N, SIZE, BAND, P, E> {
 macro_rules! dispatch {
     ($p:expr, $f:ident ( $($arg:expr),* )) => {
         match ($p.format, $p.store) {
-            (Format::Q16_16, DepthStore::Row32) => $f::<Q16_16, Scanline<Q16_16, SIZE, P, E, A>>($($arg),*),
+            (Format::Q16_16, DepthStore::Row32) => $f::<Q16_16, Scanline<Q16_16, SIZE, E, P, A>>($($arg),*),
             (Format::Q16_16, DepthStore::Tile16) => $f::<Q16_16, Tiled<Q16_16, SIZE, BAND, P, E>>($($arg),*),
-            (Format::Q24_8, DepthStore::Row32) => $f::<Q24_8, Scanline<Q24_8, SIZE, P, E, A>>($($arg),*),
+            (Format::Q24_8, DepthStore::Row32) => $f::<Q24_8, Scanline<Q24_8, SIZE, E, P, A>>($($arg),*),
             (Format::Q24_8, DepthStore::Tile16) => $f::<Q24_8, Tiled<Q24_8, SIZE, BAND, P, E>>($($arg),*),
-            (Format::F32, DepthStore::Row32) => $f::<f32, Scanline<f32, SIZE, P, E, A>>($($arg),*),
+            (Format::F32, DepthStore::Row32) => $f::<f32, Scanline<f32, SIZE, E, P, A>>($($arg),*),
             (Format::F32, DepthStore::Tile16) => $f::<f32, Tiled<f32, SIZE, BAND, P, E>>($($arg),*),
         }
     };

@@ -38,7 +38,7 @@ const MIN_DRAWN: usize = 1000;
 const MEASUREMENT: Duration = Duration::from_secs(3);
 const SAMPLES: usize = 20;
 
-type Renderer<N> = Scanline<N, W, P, E, A>;
+type Renderer<N> = Scanline<N, W, E, P, A>;
 
 /// Discards rows but keeps them observable: every row goes through `black_box` and a few of
 /// its pixels are folded into `acc`, so the optimizer cannot drop the work.

@@ -22,7 +22,7 @@ impl<N> RowSink<N> for Sink {
 }
 
 fn run<N: zrow_scenes::Format>(name: &str, frames: usize) {
-    let mut r = Box::new(Scanline::<N, 240, 4096, 12288, 512>::new());
+    let mut r = Box::new(Scanline::<N, 240, 12288, 4096, 512>::new());
     let mut sink = Sink(0);
     zrow_scenes::with_scene::<N, _>(name, 0.0, |scene, cfg, _| {
         for k in 0..frames {

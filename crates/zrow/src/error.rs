@@ -10,6 +10,9 @@ pub enum Table {
     Polygons,
     /// The edge table (edges that cross a sample row on screen).
     Edges,
+    /// The vertex pool (the scan-line method: the vertices of every polygon drawn, after
+    /// clipping).
+    Vertices,
     /// The active list (polygons spanning one row; twice as many active edges).
     ActivePolygons,
     /// The row buffers (`depth[x]`, `intensity[x]`): the frame is wider than they are.
@@ -96,6 +99,7 @@ impl core::fmt::Display for Table {
         f.write_str(match self {
             Table::Polygons => "polygon table",
             Table::Edges => "edge table",
+            Table::Vertices => "vertex pool",
             Table::ActivePolygons => "active list",
             Table::RowWidth => "row buffer",
             Table::FrameBuffer => "frame buffer",

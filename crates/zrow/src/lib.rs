@@ -23,7 +23,7 @@
 //! let scene = ScreenScene { mesh: Mesh::new(&vertices, &faces) };
 //!
 //! // Capacities: 8-pixel rows, 2 polygons, 8 edges, 2 polygons active in a row.
-//! let mut renderer = Scanline::<Q16_16, 8, 2, 8, 2>::new();
+//! let mut renderer = Scanline::<Q16_16, 8, 8, 2, 2>::new();
 //! let mut pixels = [Rgb565::BLACK; 8 * 8];
 //! let mut frame = FrameBuffer::new(&mut pixels, 8);
 //! renderer.render(&scene, &Config::screen(8, 8), &mut frame).unwrap();

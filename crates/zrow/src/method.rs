@@ -20,7 +20,7 @@
 //! let v = [Vec3::new(0.0f32, 0.0, 1.0), Vec3::new(8.0, 0.0, 1.0), Vec3::new(0.0, 8.0, 1.0)];
 //! let faces = [Face::new(&[0, 1, 2], Rgb565::RED)];
 //! let scene = ScreenScene { mesh: Mesh::new(&v, &faces) };
-//! let a = draw(&mut Scanline::<f32, 8, 1, 4, 1>::new(), &scene);
+//! let a = draw(&mut Scanline::<f32, 8, 4, 1, 1>::new(), &scene);
 //! let b = draw(&mut ZBuffer::<f32, 8, 8>::new(), &scene);
 //! assert_eq!(a, b);
 //! ```

@@ -175,14 +175,51 @@ fn div_ceil(a: i64, b: i64) -> i64 {
     -((-a).div_euclid(b))
 }
 
-/// First sample row at or below `y` (sub-pixels): `ceil((y − h)/2^S)`.
-fn row_at_or_below(y: i32, s: u32, h: i32) -> i32 {
-    div_ceil(y as i64 - h as i64, 1 << s) as i32
+/// First sample row (or column) at or below `y` (sub-pixels): `ceil((y − h)/2^S)`, as a
+/// shift: `−floor((h − y)/2^S)`.
+#[inline]
+pub(crate) fn row_at_or_below(y: i32, s: u32, h: i32) -> i32 {
+    (-((h as i64 - y as i64) >> s)) as i32
 }
 
 impl Edge {
     /// The state of the exact walk at `row` (which must lie in `first_row..=last_row`).
     pub fn dda_at(&self, row: i32, s: u32) -> Dda {
+        // Coordinates lie within the guard band (|x|, |y| < 2^21 sub-pixels with S ≤ 8), so
+        // dy·2^S and the step fit 32 bits; so does the first crossing when the edge starts
+        // less than two rows above `row` (every edge but those clamped to the top of the
+        // screen): one 32-bit division each instead of 64-bit library calls. Same results.
+        let (h, mask) = (1i32 << s >> 1, (1i32 << s) - 1);
+        let t = (row << s) + h - self.y0; // how far below the top the sample line is
+        let small = |v: i32| v.unsigned_abs() < 1 << 21;
+        if (0..512).contains(&t)
+            && self.dy > 0
+            && small(self.dy)
+            && small(self.dx)
+            && small(self.x0)
+            && s <= 8
+        {
+            let den = self.dy << s;
+            let qs = self.dx.div_euclid(self.dy);
+            let rs = (self.dx - qs * self.dy) << s;
+            // x0 − h = qx·2^S + fx; the crossing's column is qx + ceil((fx·dy + t·dx) / den).
+            let x0h = self.x0 - h;
+            let (qx, fx) = (x0h >> s, x0h & mask);
+            let num = fx * self.dy + t * self.dx;
+            let q = -((-num).div_euclid(den));
+            return Dda {
+                x: qx + q,
+                r: q * den - num,
+                qs,
+                rs,
+                den,
+            };
+        }
+        self.dda_at_wide(row, s)
+    }
+
+    /// [`Edge::dda_at`] in 64-bit arithmetic, for any row.
+    fn dda_at_wide(&self, row: i32, s: u32) -> Dda {
         let h = 1i64 << s >> 1;
         let den = (self.dy as i64) << s;
         let ys = ((row as i64) << s) + h;
@@ -276,16 +313,29 @@ pub fn signed_area2(v: &[RasterVertex<impl Copy>]) -> i64 {
     a
 }
 
-/// Sets a polygon up for rasterisation. `Ok(None)` when it draws nothing: zero area after
-/// snapping, culled as a back face, or no sample on screen.
+/// A polygon's place on the sample grid: what every method checks before building anything.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Outline {
+    /// Clockwise on the display (positive signed area; y points down). Going round in vertex
+    /// order from the top vertex then runs down the right side when `true`, the left when
+    /// `false`.
+    pub clockwise: bool,
+    /// First row with a covered sample line (clamped to the screen).
+    pub first_row: i16,
+    /// Last such row (inclusive).
+    pub last_row: i16,
+}
+
+/// Checks a snapped polygon and finds its rows. `Ok(None)` when it draws nothing: fewer than
+/// three vertices, zero area after snapping, culled as a back face, or no sample on screen.
 ///
 /// A convex polygon's outline goes down once and up once; one that does not (a non-convex
 /// face) is [`Error::NotConvex`]. Snapping is monotone, so it never makes a convex polygon fail.
-pub fn setup<N: Scalar>(
-    poly: &RasterPolygon<N>,
+pub fn outline<T: Copy>(
+    v: &[RasterVertex<T>],
     cfg: &Config,
-) -> Result<Option<SetupPolygon<N>>, Error> {
-    let v = &poly.vertices[..];
+    face: u32,
+) -> Result<Option<Outline>, Error> {
     if v.len() < 3 {
         return Ok(None);
     }
@@ -305,77 +355,114 @@ pub fn setup<N: Scalar>(
         last = d;
     }
     if changes > 2 {
-        return Err(Error::NotConvex { face: poly.face });
+        return Err(Error::NotConvex { face });
     }
     // Reject polygons whose bounding box misses every sample.
     let s = cfg.subpixel_bits as u32;
     let h = cfg.half();
-    let (mut xmin, mut xmax) = (i32::MAX, i32::MIN);
+    let (mut xmin, mut xmax, mut ymin, mut ymax) = (i32::MAX, i32::MIN, i32::MAX, i32::MIN);
     for p in v {
         xmin = xmin.min(p.x);
         xmax = xmax.max(p.x);
+        ymin = ymin.min(p.y);
+        ymax = ymax.max(p.y);
     }
-    let width = cfg.width as i32;
-    let height = cfg.height as i32;
-    if row_at_or_below(xmax, s, h) <= 0 || row_at_or_below(xmin, s, h) >= width {
+    if row_at_or_below(xmax, s, h) <= 0 || row_at_or_below(xmin, s, h) >= cfg.width as i32 {
         return Ok(None);
     }
+    // The edges' row ranges tile the outline's from its top to its bottom (each edge
+    // `ceil((top − h)/2^S) .. ceil((bottom − h)/2^S)`, half-open), so their union is this.
+    let first = row_at_or_below(ymin, s, h).max(0);
+    let last_row = row_at_or_below(ymax, s, h).min(cfg.height as i32) - 1;
+    if first > last_row {
+        return Ok(None);
+    }
+    Ok(Some(Outline {
+        clockwise: area > 0,
+        first_row: first as i16,
+        last_row: last_row as i16,
+    }))
+}
+
+/// The non-horizontal edge from `p` down to `q` (`q.y > p.y`) on `side`, with the sample
+/// rows it crosses on screen; `None` if it crosses none.
+pub(crate) fn edge_between<T: Copy>(
+    p: &RasterVertex<T>,
+    q: &RasterVertex<T>,
+    side: Side,
+    cfg: &Config,
+) -> Option<Edge> {
+    let (s, h) = (cfg.subpixel_bits as u32, cfg.half());
+    let r0 = row_at_or_below(p.y, s, h).max(0);
+    let r1 = row_at_or_below(q.y, s, h).min(cfg.height as i32) - 1;
+    (r0 <= r1).then_some(Edge {
+        first_row: r0 as i16,
+        last_row: r1 as i16,
+        x0: p.x,
+        y0: p.y,
+        dx: q.x - p.x,
+        dy: q.y - p.y,
+        poly: 0,
+        side,
+    })
+}
+
+/// The vertices of a polygon from its top-left vertex (least y, then least x), clockwise on
+/// the display: the order [`Scalar::depth_plane`] wants, so the same polygon gets the same
+/// plane bits whatever vertex it was listed from. Returns the count written to `out`.
+pub fn canonical<N: Copy>(
+    v: &[RasterVertex<N>],
+    clockwise: bool,
+    out: &mut [RasterVertex<N>; MAX_POLYGON_VERTICES],
+) -> usize {
+    let n = v.len().min(MAX_POLYGON_VERTICES);
+    let start = (0..n).min_by_key(|&k| (v[k].y, v[k].x)).unwrap_or(0);
+    for (k, c) in out.iter_mut().take(n).enumerate() {
+        let at = if clockwise { start + k } else { start + n - k };
+        *c = v[at % n];
+    }
+    n
+}
+
+/// Sets a polygon up for rasterisation: [`outline`], then its edges and depth plane.
+/// `Ok(None)` when it draws nothing.
+pub fn setup<N: Scalar>(
+    poly: &RasterPolygon<N>,
+    cfg: &Config,
+) -> Result<Option<SetupPolygon<N>>, Error> {
+    let v = &poly.vertices[..];
+    let Some(o) = outline(v, cfg, poly.face)? else {
+        return Ok(None);
+    };
     let mut edges = heapless::Vec::new();
-    let (mut first, mut last_row) = (i32::MAX, i32::MIN);
     for k in 0..v.len() {
-        let (p, q) = (v[k], v[(k + 1) % v.len()]);
+        let (p, q) = (&v[k], &v[(k + 1) % v.len()]);
         if p.y == q.y {
             continue;
         }
         let down = q.y > p.y;
         let (top, bottom) = if down { (p, q) } else { (q, p) };
-        let r0 = row_at_or_below(top.y, s, h).max(0);
-        let r1 = row_at_or_below(bottom.y, s, h).min(height) - 1;
-        if r0 > r1 {
-            continue;
-        }
-        // Clockwise on the display (area > 0): edges going down bound the right side.
-        let side = if down == (area > 0) {
+        // Clockwise on the display: edges going down bound the right side.
+        let side = if down == o.clockwise {
             Side::Right
         } else {
             Side::Left
         };
-        first = first.min(r0);
-        last_row = last_row.max(r1);
-        // Cannot overflow: a polygon has at most MAX_POLYGON_VERTICES edges.
-        let _ = edges.push(Edge {
-            first_row: r0 as i16,
-            last_row: r1 as i16,
-            x0: top.x,
-            y0: top.y,
-            dx: bottom.x - top.x,
-            dy: bottom.y - top.y,
-            poly: 0,
-            side,
-        });
+        if let Some(e) = edge_between(top, bottom, side, cfg) {
+            // Cannot overflow: a polygon has at most MAX_POLYGON_VERTICES edges.
+            let _ = edges.push(e);
+        }
     }
-    if edges.is_empty() {
-        return Ok(None);
-    }
-    // Canonical order for the plane: from the top-left vertex, clockwise on the display.
-    let start = (0..v.len()).min_by_key(|&k| (v[k].y, v[k].x)).unwrap_or(0);
-    let mut canonical = [RasterVertex::default(); MAX_POLYGON_VERTICES];
-    for (k, c) in canonical.iter_mut().take(v.len()).enumerate() {
-        let at = if area > 0 {
-            start + k
-        } else {
-            start + v.len() - k
-        };
-        *c = v[at % v.len()];
-    }
-    let Some(plane) = N::depth_plane(&canonical[..v.len()], s) else {
+    let mut ordered = [RasterVertex::default(); MAX_POLYGON_VERTICES];
+    let n = canonical(v, o.clockwise, &mut ordered);
+    let Some(plane) = N::depth_plane(&ordered[..n], cfg.subpixel_bits as u32) else {
         return Ok(None);
     };
     Ok(Some(SetupPolygon {
         plane,
         color: poly.color,
-        first_row: first as i16,
-        last_row: last_row as i16,
+        first_row: o.first_row,
+        last_row: o.last_row,
         edges,
     }))
 }
@@ -394,6 +481,51 @@ mod tests {
             dy: y1 - y0,
             poly: 0,
             side: Side::Left,
+        }
+    }
+
+    #[test]
+    fn dda_fast_path_equals_the_wide_one() {
+        // Edges of every slope and position, first rows just below their tops (the fast
+        // path) and far below (the wide one), every sub-pixel precision.
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |m: i64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % (2 * m as u64 + 1)) as i64 - m
+        };
+        let mut fast = 0;
+        for _ in 0..20_000 {
+            let s = 1 + (next(3) + 3) as u32 % 8;
+            let (x0, y0) = (next(1 << 20) as i32, next(1 << 20) as i32);
+            let (dx, dy) = (next(1 << 20) as i32, next(1 << 20).abs().max(1) as i32);
+            let e = edge(x0, y0, x0 + dx, y0 + dy);
+            let first = row_at_or_below(y0, s, 1 << s >> 1);
+            for row in [first, first + 1, first + next(3000).abs() as i32] {
+                let t = (row << s) + (1 << s >> 1) - y0;
+                fast += (t < 512) as u32;
+                assert_eq!(
+                    e.dda_at(row, s),
+                    e.dda_at_wide(row, s),
+                    "{e:?} row {row} s {s}"
+                );
+            }
+        }
+        assert!(fast > 20_000, "the fast path ran {fast} times");
+    }
+
+    #[test]
+    fn row_at_or_below_is_the_ceiling() {
+        for s in 1..=8u32 {
+            let h = 1 << s >> 1;
+            for y in -3000..3000 {
+                assert_eq!(
+                    row_at_or_below(y, s, h) as i64,
+                    div_ceil(y as i64 - h as i64, 1 << s),
+                    "y {y} s {s}"
+                );
+            }
         }
     }
 

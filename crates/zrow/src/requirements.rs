@@ -16,6 +16,9 @@ pub struct Requirements {
     pub polygons: u32,
     /// Edges that cross a sample row on screen (edge table).
     pub edges: u32,
+    /// Vertex slots (the scan-line's vertex pool: the vertices of those polygons after
+    /// clipping, summed).
+    pub vertices: u32,
     /// Most polygons crossing one row (active list).
     pub active_polygons: u32,
     /// Row width in pixels.
@@ -32,6 +35,7 @@ impl Requirements {
         Requirements {
             polygons: self.polygons.max(o.polygons),
             edges: self.edges.max(o.edges),
+            vertices: self.vertices.max(o.vertices),
             active_polygons: self.active_polygons.max(o.active_polygons),
             width: self.width.max(o.width),
         }
@@ -68,6 +72,7 @@ pub fn requirements<N: Scalar>(
         if let Some(sp) = setup(poly, cfg)? {
             req.polygons += 1;
             req.edges += sp.edges.len() as u32;
+            req.vertices += poly.vertices.len() as u32;
             let (a, b) = (sp.first_row as usize, sp.last_row as usize + 1);
             rows[a] = rows[a].wrapping_add(1);
             rows[b] = rows[b].wrapping_sub(1);

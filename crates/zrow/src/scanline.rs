@@ -1,31 +1,41 @@
-//! The scan-line method (seed 000 §2.2.2), made exact and fast.
+//! The scan-line method (Foley & van Dam §15.6; Sutherland, Sproull & Schumacker 1974), made
+//! exact and fast.
 //!
-//! The seeds' algorithm: for each scan line, set `depth[x]` to the maximum and `intensity[x]` to
-//! the background; for each polygon crossing the line and each pixel inside it, compute the
+//! The method: for each scan line, set `depth[x]` to the maximum and `intensity[x]` to the
+//! background; for each polygon crossing the line and each pixel inside it, compute the
 //! polygon's depth z and keep it where `z < depth[x]`; hand the finished row on. Depth moves
 //! incrementally: `z −= A/C` one pixel right, `z += (A/m + B)/C` one row down an edge.
 //!
-//! Here, as in the seeds and Foley §15.6:
+//! Here:
 //!
-//! - a **polygon table** holds each polygon's depth plane and colour;
-//! - an **edge table** holds every edge that crosses a sample row, sorted by its first row (a
-//!   sorted array with a cursor is the bucket list without the pointers);
-//! - an **active list** holds the polygons the current row crosses, each with its current left
-//!   and right edge stepped exactly (`x += 1/m`, see [`crate::raster::Dda`]) and its depth at
-//!   its left end, stepped down the edge by `dzdy + dzdx·Δx` — the seeds' `(A/m + B)/C` with the
-//!   pixel steps the edge actually takes, so it equals the plane at every pixel centre;
-//! - **span coherence** (seed 000, the three cases): where one polygon is in front at both
-//!   ends of its overlap with another it is in front throughout (depths are linear in x, so
-//!   their difference cannot change sign in between). The row is filled from a *front*
-//!   polygon with no per-pixel depth test up to the first column where another open polygon
-//!   overtakes it — their intersection (case 3), found exactly by bisection — or it closes, or
-//!   a newcomer opens in front of it. Work follows the visible changes along the row, not the
-//!   pixels and not the polygons hidden behind the front.
+//! - a **polygon table** keeps, for each polygon that survives geometry, where its snapped
+//!   vertices are, its colour and its rows — a few bytes, in scene order (the order that
+//!   breaks depth ties);
+//! - polygons are **bucketed by first row** (a counting sort) instead of sorting an edge
+//!   table: a polygon enters the active list on its first row and builds its two edges
+//!   there, from its top vertex down each side (a convex polygon's left and right chains);
+//!   when an edge ends, the next one down the same chain takes over;
+//! - an **active list** holds the polygons the current row crosses, each with its left and
+//!   right edge stepped exactly (`x += 1/m`, see [`crate::raster::Dda`]) and its depth at its
+//!   left end, stepped down the edge by `dzdy + dzdx·Δx` — the seeds' `(A/m + B)/C` with the
+//!   pixel steps the edge actually takes, so it equals the plane at every pixel centre.
+//!   Entries stay where they are; the row's order by left end is kept on a list of slot
+//!   numbers (two bytes each), nearly sorted from one row to the next;
+//! - **span coherence**: where one polygon is in front at both ends of its overlap with
+//!   another it is in front throughout (depths are linear in x, so their difference cannot
+//!   change sign in between). The row is filled from a *front* polygon with no per-pixel
+//!   depth test up to the first column where another open polygon overtakes it — their
+//!   intersection, found exactly by bisection — or it closes, or a newcomer opens in front of
+//!   it. Work follows the visible changes along the row, not the pixels and not the polygons
+//!   hidden behind the front.
 //!
-//! Ties go to the polygon that comes first in the scene (GUIDE §1): the winner is the least
+//! Ties go to the polygon that comes first in the scene: the winner is the least
 //! `(depth, scene order)`. In Q16.16 depths step by wrapping integer additions, which equal the
 //! direct plane evaluation bit for bit, so every span decision equals the per-pixel test
 //! exactly (the property tests check this against an exact reference).
+//!
+//! The depth row is written only when someone reads it ([`RowSink::WANTS_DEPTH`], or the
+//! perspective-correct depth cue); otherwise a row is its colours alone, written span by span.
 //!
 //! Every capacity is checked while the tables are built, before the first row is sent.
 
@@ -33,87 +43,101 @@ use crate::error::{Error, RenderError, Table};
 use crate::geometry::shade;
 use crate::method::{FrameStats, Renderer};
 use crate::number::{DepthPlane, Scalar};
-use crate::raster::{setup, Config, Dda, Edge, Side};
+use crate::raster::{
+    canonical, edge_between, outline, Config, Dda, RasterVertex, Side, MAX_POLYGON_VERTICES,
+};
 use crate::requirements::Requirements;
 use crate::scene::Scene;
 use crate::shading::{Cue, Interpolation};
 use crate::sink::{Row, RowSink};
+use embedded_graphics_core::pixelcolor::raw::{RawData, RawU16};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use heapless::binary_heap::{BinaryHeap, Min};
 use heapless::Vec;
 
-const NONE: u16 = u16::MAX;
-
-/// One entry of the polygon table.
+/// One polygon of the table: where its vertices are, its colour and its rows.
 #[derive(Clone, Copy, Debug)]
-struct PolygonEntry<N> {
-    plane: DepthPlane<N>,
+struct Polygon {
+    /// First of its vertices in the vertex pool.
+    start: u16,
+    /// How many.
+    len: u8,
+    /// Clockwise on the display (its right side runs forward from the top vertex).
+    clockwise: bool,
     color: Rgb565,
     first_row: i16,
     last_row: i16,
-    /// Position in the active list, or `NONE`.
-    slot: u16,
 }
 
-/// One entry of the active list: a polygon crossing the current row and its two edges.
+/// One side of an active polygon: the edge crossing the current row, walked exactly.
+#[derive(Clone, Copy, Debug, Default)]
+struct Walk {
+    dda: Dda,
+    /// Last row of this edge.
+    last: i16,
+    /// Position, in the polygon's vertex ring, of the edge's lower vertex (where the next
+    /// edge of this side starts).
+    at: u8,
+}
+
+/// One entry of the active list: a polygon crossing the current row.
 #[derive(Clone, Copy, Debug)]
 struct Active<N> {
-    left: Dda,
-    right: Dda,
+    left: Walk,
+    right: Walk,
+    plane: DepthPlane<N>,
     /// Depth at the centre of pixel `xl` of the current row.
     z_left: N,
-    dzdx: N,
-    dzdy: N,
     /// This row's span: `xl..xr` (unclamped; may be empty).
     xl: i32,
     xr: i32,
-    left_last: i16,
-    right_last: i16,
     last_row: i16,
+    /// Scene order: the index in the polygon table.
     poly: u16,
     color: Rgb565,
-    fresh: bool,
-    /// Affine depth cue only: the factor where the left and right edges cross this row, and
-    /// its change per row down each edge (Gouraud).
-    cue_left: N,
-    cue_left_dy: N,
-    cue_right: N,
-    cue_right_dy: N,
+    /// Affine depth cue: factors and steps per row on the left and right edges.
+    cue: [N; 4],
 }
 
 /// The scan-line renderer.
 ///
-/// - `N`: number format ([`crate::Q16_16`] or `f32`);
+/// - `N`: number format ([`crate::Q16_16`], [`crate::Q24_8`] or `f32`);
 /// - `W`: row capacity (the widest frame, in pixels);
-/// - `P`: polygon-table capacity; `E`: edge-table capacity; `A`: active-list capacity
-///   (polygons in one row).
+/// - `V`: vertex pool (the polygons' vertices after clipping, summed);
+/// - `P`: polygon table; `A`: active list (polygons crossing one row).
 ///
 /// Choose the capacities with [`crate::requirements()`]. All memory is in the struct:
 /// [`Scanline::RAM_BYTES`] is the whole of it.
-pub struct Scanline<N, const W: usize, const P: usize, const E: usize, const A: usize> {
-    polygons: Vec<PolygonEntry<N>, P>,
-    edges: Vec<Edge, E>,
+pub struct Scanline<N, const W: usize, const V: usize, const P: usize, const A: usize> {
+    vertices: Vec<RasterVertex<N>, V>,
+    polygons: Vec<Polygon, P>,
+    /// Polygon numbers by first row (stable: scene order within a row).
+    order: Vec<u16, P>,
     active: Vec<Active<N>, A>,
+    /// Free slots of `active`.
+    free: Vec<u16, A>,
+    /// The occupied slots of `active`, by left end this row.
+    sorted: Vec<u16, A>,
     /// Polygons covering the current piece of the row, by the column where their span ends.
     open: BinaryHeap<(i32, u16), Min, A>,
-    /// Scratch for [`Self::max_active`]: last rows of the polygons counted so far.
-    last_rows: Vec<i16, A>,
     depth: [N; W],
     intensity: [Rgb565; W],
     /// This frame's depth cue, if shading is not flat.
     cue: Option<Cue<N>>,
+    /// Edges walked so far this frame (for [`FrameStats::edges`]).
+    edges: u32,
 }
 
-impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize> Default
-    for Scanline<N, W, P, E, A>
+impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize> Default
+    for Scanline<N, W, V, P, A>
 {
     fn default() -> Self {
         Self::new()
     }
 }
 
-impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
-    Scanline<N, W, P, E, A>
+impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize>
+    Scanline<N, W, V, P, A>
 {
     /// Bytes of RAM the renderer occupies (all its tables and row buffers).
     pub const RAM_BYTES: usize = core::mem::size_of::<Self>();
@@ -121,20 +145,24 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
     /// An empty renderer.
     pub const fn new() -> Self {
         const {
-            assert!(P < NONE as usize, "polygon capacity must be below 65535");
-            assert!(A < NONE as usize, "active capacity must be below 65535");
+            assert!(V <= 1 << 16, "vertex capacity must be at most 65536");
+            assert!(P < 1 << 16, "polygon capacity must be below 65536");
+            assert!(A < 1 << 16, "active capacity must be below 65536");
         }
         Scanline {
+            vertices: Vec::new(),
             polygons: Vec::new(),
-            edges: Vec::new(),
+            order: Vec::new(),
             active: Vec::new(),
+            free: Vec::new(),
+            sorted: Vec::new(),
             open: BinaryHeap::new(),
-            last_rows: Vec::new(),
             // All zero, so a `static` renderer lands in .bss, not copied from flash; both rows
             // are rewritten in full before each is sent.
             depth: [N::ZERO; W],
             intensity: [Rgb565::BLACK; W],
             cue: None,
+            edges: 0,
         }
     }
 
@@ -154,7 +182,8 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
         Ok(stats)
     }
 
-    /// Builds the polygon and edge tables and checks the active-list capacity.
+    /// Builds the polygon table, buckets it by first row and checks the active list's
+    /// capacity.
     fn prepare(
         &mut self,
         scene: &(impl Scene<N> + ?Sized),
@@ -162,34 +191,34 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
     ) -> Result<FrameStats, Error> {
         cfg.validate(W)?;
         self.cue = Cue::for_frame(scene, cfg)?;
+        self.vertices.clear();
         self.polygons.clear();
-        self.edges.clear();
         self.active.clear();
-        let (mut polys, mut edges) = (0u32, 0u32);
-        let table = &mut self.polygons;
-        let edge_table = &mut self.edges;
+        self.free.clear();
+        self.sorted.clear();
+        let (mut polys, mut corners) = (0u32, 0u32);
+        let (table, pool) = (&mut self.polygons, &mut self.vertices);
         scene.polygons(cfg, &mut |poly| {
-            let Some(sp) = setup(poly, cfg)? else {
+            let v = &poly.vertices[..];
+            let Some(o) = outline(v, cfg, poly.face)? else {
                 return Ok(());
             };
             polys += 1;
-            edges += sp.edges.len() as u32;
-            let index = table.len() as u16;
-            let entry = PolygonEntry {
-                plane: sp.plane,
-                color: sp.color,
-                first_row: sp.first_row,
-                last_row: sp.last_row,
-                slot: NONE,
-            };
+            corners += v.len() as u32;
             // Past a capacity, keep counting so the error can say what the scene needs.
-            if table.push(entry).is_ok() {
-                for mut e in sp.edges {
-                    e.poly = index;
-                    if edge_table.push(e).is_err() {
-                        break;
-                    }
+            if table.len() < P && pool.len() + v.len() <= V {
+                let start = pool.len() as u16;
+                for &p in v {
+                    let _ = pool.push(p); // room checked above
                 }
+                let _ = table.push(Polygon {
+                    start,
+                    len: v.len() as u8,
+                    clockwise: o.clockwise,
+                    color: poly.color,
+                    first_row: o.first_row,
+                    last_row: o.last_row,
+                });
             }
             Ok(())
         })?;
@@ -201,44 +230,78 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
         if polys as usize > P {
             return Err(over(Table::Polygons, polys, P));
         }
-        if edges as usize > E {
-            return Err(over(Table::Edges, edges, E));
+        if corners as usize > V {
+            return Err(over(Table::Vertices, corners, V));
         }
-        self.edges
-            .sort_unstable_by_key(|e| (e.first_row, e.poly, e.side as u8));
+        self.bucket(cfg.height as usize);
         let max_active = self.max_active()?;
+        self.edges = 0;
         Ok(FrameStats {
             polygons: polys,
-            edges,
             max_active,
             ..FrameStats::default()
         })
     }
 
-    /// Most polygons active in one row, checked against `A`.
+    /// Orders the polygon table by first row into `order`, scene order within a row: a
+    /// counting sort whose counters borrow the colour row (free until the first row is drawn),
+    /// or, for a frame taller than the row is wide, a sort of the polygon numbers.
+    fn bucket(&mut self, height: usize) {
+        let (polygons, order) = (&self.polygons, &mut self.order);
+        order.clear();
+        if height > W {
+            order.extend(0..polygons.len() as u16);
+            order.sort_unstable_by_key(|&i| (polygons[i as usize].first_row, i));
+            return;
+        }
+        // The counters are u16 (the polygon table holds fewer than 2^16), kept as Rgb565's
+        // raw storage: a free conversion either way.
+        let count = &mut self.intensity[..height];
+        let raw = |c: Rgb565| RawU16::from(c).into_inner();
+        let of = |v: u16| Rgb565::from(RawU16::new(v));
+        count.fill(of(0));
+        for p in polygons {
+            let c = &mut count[p.first_row as usize];
+            *c = of(raw(*c) + 1);
+        }
+        let mut sum = 0u16;
+        for c in count.iter_mut() {
+            let n = raw(*c);
+            *c = of(sum);
+            sum += n;
+        }
+        order.extend(core::iter::repeat_n(0, polygons.len()));
+        for (i, p) in polygons.iter().enumerate() {
+            let c = &mut count[p.first_row as usize];
+            order[raw(*c) as usize] = i as u16;
+            *c = of(raw(*c) + 1);
+        }
+    }
+
+    /// Most polygons active in one row, checked against `A`: a sweep over the polygons by
+    /// first row with their last rows in a min-heap (the `open` heap, not yet in use).
     fn max_active(&mut self) -> Result<u32, Error> {
-        self.last_rows.clear();
+        let open = &mut self.open;
+        open.clear();
         let mut max = 0;
-        for e in &self.edges {
-            let p = &mut self.polygons[e.poly as usize];
-            if p.slot != NONE {
-                continue;
+        for &i in &self.order {
+            let p = &self.polygons[i as usize];
+            while open
+                .peek()
+                .is_some_and(|&(last, _)| last < p.first_row as i32)
+            {
+                open.pop();
             }
-            p.slot = 0; // seen
-            let (row, last) = (p.first_row, p.last_row);
-            self.last_rows.retain(|&l| l >= row);
-            if self.last_rows.push(last).is_err() {
+            if open.push((p.last_row as i32, i)).is_err() {
                 return Err(Error::Capacity {
                     table: Table::ActivePolygons,
                     needed: self.max_active_exact(),
                     capacity: A as u32,
                 });
             }
-            max = max.max(self.last_rows.len() as u32);
+            max = max.max(open.len() as u32);
         }
-        for p in self.polygons.iter_mut() {
-            p.slot = NONE;
-        }
+        open.clear();
         Ok(max)
     }
 
@@ -261,195 +324,207 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
         sink: &mut K,
         stats: &mut FrameStats,
     ) -> Result<(), K::Error> {
-        let s = cfg.subpixel_bits as u32;
         let width = cfg.width as usize;
+        let want_depth = K::WANTS_DEPTH
+            || self
+                .cue
+                .is_some_and(|c| c.interpolation == Interpolation::PerspectiveCorrect);
         let mut cursor = 0;
         for y in 0..cfg.height as i32 {
-            // New edges from the edge table.
-            while let Some(e) = self
-                .edges
-                .get(cursor)
-                .copied()
-                .filter(|e| e.first_row as i32 == y)
-            {
-                cursor += 1;
-                self.activate(&e, y, s);
-            }
-            // This row's spans, and the depth at each span's left end.
-            for a in self.active.iter_mut() {
-                let (xl, xr) = (a.left.x, a.right.x);
-                if a.fresh {
-                    a.z_left = self.polygons[a.poly as usize].plane.at(xl, y);
-                    a.fresh = false;
-                } else {
-                    a.z_left = a.z_left.step(a.dzdx, xl - a.xl).step(a.dzdy, 1);
+            // Polygons whose first row this is enter the active list.
+            while let Some(&i) = self.order.get(cursor) {
+                if self.polygons[i as usize].first_row as i32 != y {
+                    break;
                 }
-                a.xl = xl;
-                a.xr = xr;
+                cursor += 1;
+                self.activate(i, y, cfg);
             }
             self.sort_active();
-            self.resolve_row(width, cfg.background, stats);
-            Cue::shade_row_if_perspective(
-                &self.cue,
-                &self.depth[..width],
-                &mut self.intensity[..width],
-            );
+            self.resolve_row(width, cfg.background, want_depth, stats);
+            let depth: &[N] = if want_depth {
+                Cue::shade_row_if_perspective(
+                    &self.cue,
+                    &self.depth[..width],
+                    &mut self.intensity[..width],
+                );
+                &self.depth[..width]
+            } else {
+                &[]
+            };
             sink.write_row(&Row {
                 y: y as u16,
                 intensity: &self.intensity[..width],
-                depth: &self.depth[..width],
+                depth,
             })?;
-            self.advance(y);
+            self.advance(y, cfg);
         }
+        stats.edges = self.edges;
         Ok(())
     }
 
-    fn activate(&mut self, e: &Edge, y: i32, s: u32) {
-        let (poly, side, dda, last) = (e.poly, e.side, e.dda_at(y, s), e.last_row);
-        // Affine cue: the exact factor where the edge crosses its first and last rows, and
-        // the linear step between (the seeds' incremental intensity down an edge).
-        let (mut cue, mut cue_dy) = (N::ZERO, N::ZERO);
-        if let Some(c) = self
-            .cue
+    /// Polygon `i` enters the active list on row `y`, its first: its depth plane, and its two
+    /// edges found down each side from its top vertex.
+    fn activate(&mut self, i: u16, y: i32, cfg: &Config) {
+        let p = self.polygons[i as usize];
+        let ring = &self.vertices[p.start as usize..][..p.len as usize];
+        let mut ordered = [RasterVertex::default(); MAX_POLYGON_VERTICES];
+        let n = canonical(ring, p.clockwise, &mut ordered);
+        let Some(plane) = N::depth_plane(&ordered[..n], cfg.subpixel_bits as u32) else {
+            return; // cannot happen: the outline has a nonzero area
+        };
+        let top = (0..n).min_by_key(|&k| (ring[k].y, ring[k].x)).unwrap_or(0) as u8;
+        // Clockwise on the display: forward from the top runs down the right side.
+        let (Some(left), Some(right)) = (
+            walk_from(ring, top, !p.clockwise, y, Side::Left, cfg),
+            walk_from(ring, top, p.clockwise, y, Side::Right, cfg),
+        ) else {
+            return; // cannot happen: the outline covers row y
+        };
+        self.edges += 2;
+        let Some(slot) = self.free.pop().or(if self.active.len() < A {
+            Some(self.active.len() as u16)
+        } else {
+            None
+        }) else {
+            return; // cannot happen: `max_active` checked the capacity for every row
+        };
+        let xl = left.dda.x;
+        let mut a = Active {
+            left,
+            right,
+            plane,
+            z_left: plane.at(xl, y),
+            xl,
+            xr: right.dda.x,
+            last_row: p.last_row,
+            poly: i,
+            color: p.color,
+            cue: [N::ZERO; 4],
+        };
+        if let Some(c) = self.affine_cue() {
+            a.cue[0..2].copy_from_slice(&edge_cue(&c, &a.plane, &left, y));
+            a.cue[2..4].copy_from_slice(&edge_cue(&c, &a.plane, &right, y));
+        }
+        if slot as usize == self.active.len() {
+            let _ = self.active.push(a); // room checked above
+        } else {
+            self.active[slot as usize] = a;
+        }
+        let _ = self.sorted.push(slot); // at most A slots are occupied
+    }
+
+    /// The frame's cue if it is interpolated affinely (down edges and across spans).
+    fn affine_cue(&self) -> Option<Cue<N>> {
+        self.cue
             .filter(|c| c.interpolation == Interpolation::Affine)
-        {
-            let plane = &self.polygons[poly as usize].plane;
-            // Depth at the crossing: the plane at column x, stepped back by the fraction.
-            let on_edge = |d: &Dda, row: i32| {
-                c.at_depth(plane.at(d.x, row).sub(plane.dzdx.mul(d.fraction())))
-            };
-            cue = on_edge(&dda, y);
-            let rows = last as i32 - y;
-            if rows > 0 {
-                let end = on_edge(&e.dda_at(last as i32, s), last as i32);
-                let n = N::from_f32(rows as f32).unwrap_or(N::ONE);
-                cue_dy = end.sub(cue).div(n).unwrap_or(N::ZERO);
-            }
-        }
-        let entry = &mut self.polygons[poly as usize];
-        if entry.slot == NONE {
-            let a = Active {
-                left: Dda::default(),
-                right: Dda::default(),
-                z_left: N::ZERO,
-                dzdx: entry.plane.dzdx,
-                dzdy: entry.plane.dzdy,
-                xl: 0,
-                xr: 0,
-                left_last: -1,
-                right_last: -1,
-                last_row: entry.last_row,
-                poly,
-                color: entry.color,
-                fresh: true,
-                cue_left: N::ZERO,
-                cue_left_dy: N::ZERO,
-                cue_right: N::ZERO,
-                cue_right_dy: N::ZERO,
-            };
-            // Cannot fail: `max_active` checked the capacity for every row.
-            if self.active.push(a).is_err() {
-                return;
-            }
-            entry.slot = (self.active.len() - 1) as u16;
-        }
-        let a = &mut self.active[entry.slot as usize];
-        match side {
-            Side::Left => {
-                (a.left, a.left_last) = (dda, last);
-                (a.cue_left, a.cue_left_dy) = (cue, cue_dy);
-            }
-            Side::Right => {
-                (a.right, a.right_last) = (dda, last);
-                (a.cue_right, a.cue_right_dy) = (cue, cue_dy);
-            }
-        }
     }
 
-    /// Insertion sort by left end (stable): the order barely changes from row to row, but a
-    /// polygon entering the list arrives at its end, so each entry out of order is placed by
-    /// a binary search of the sorted part and one rotation (a block move), not by swapping
-    /// it down one place at a time — with 230 polygons active, that swapping was a third of
-    /// the frame.
+    /// Insertion sort of the occupied slots by left end (stable): the order barely changes
+    /// from row to row, and what moves are two-byte slot numbers.
     fn sort_active(&mut self) {
-        let a = &mut self.active;
-        let mut moved = false;
-        for i in 1..a.len() {
-            if a[i - 1].xl > a[i].xl {
-                let x = a[i].xl;
-                // `a[..i]` is sorted; after the entries at or left of x, as the swaps would.
-                let pos = a[..i].partition_point(|e| e.xl <= x);
-                a[pos..=i].rotate_right(1);
-                moved = true;
-            }
-        }
-        if moved {
-            for (i, act) in a.iter().enumerate() {
-                self.polygons[act.poly as usize].slot = i as u16;
+        let (active, sorted) = (&self.active, &mut self.sorted);
+        for i in 1..sorted.len() {
+            let x = active[sorted[i] as usize].xl;
+            if active[sorted[i - 1] as usize].xl > x {
+                // `sorted[..i]` is sorted; after the entries at or left of x.
+                let pos = sorted[..i].partition_point(|&k| active[k as usize].xl <= x);
+                sorted[pos..=i].rotate_right(1);
             }
         }
     }
 
-    /// Retires what ends on row `y` and steps the rest to the next row.
-    fn advance(&mut self, y: i32) {
-        let mut i = 0;
-        while i < self.active.len() {
-            let a = &mut self.active[i];
+    /// Retires what ends on row `y` and steps the rest to the next row: each edge one row
+    /// down, or, where it ends, the next edge of its side; the span and its left depth.
+    fn advance(&mut self, y: i32, cfg: &Config) {
+        let cue = self.affine_cue();
+        let (active, free, polygons, vertices, edges) = (
+            &mut self.active,
+            &mut self.free,
+            &self.polygons,
+            &self.vertices,
+            &mut self.edges,
+        );
+        self.sorted.retain(|&slot| {
+            let a = &mut active[slot as usize];
             if a.last_row as i32 <= y {
-                self.polygons[a.poly as usize].slot = NONE;
-                self.active.swap_remove(i);
-                if let Some(moved) = self.active.get(i) {
-                    self.polygons[moved.poly as usize].slot = i as u16;
+                let _ = free.push(slot); // at most A slots
+                return false;
+            }
+            let p = &polygons[a.poly as usize];
+            let ring = &vertices[p.start as usize..][..p.len as usize];
+            for (side, k) in [(Side::Left, 0), (Side::Right, 2)] {
+                let w = match side {
+                    Side::Left => &mut a.left,
+                    Side::Right => &mut a.right,
+                };
+                if w.last as i32 > y {
+                    w.dda.step();
+                    if cue.is_some() {
+                        a.cue[k] = a.cue[k].add(a.cue[k + 1]);
+                    }
+                    continue;
                 }
-                continue;
+                let forward = (side == Side::Right) == p.clockwise;
+                if let Some(next) = walk_from(ring, w.at, forward, y + 1, side, cfg) {
+                    *w = next;
+                    *edges += 1;
+                    if let Some(c) = cue {
+                        let v = edge_cue(&c, &a.plane, &next, y + 1);
+                        a.cue[k..k + 2].copy_from_slice(&v);
+                    }
+                }
             }
-            if a.left_last as i32 > y {
-                a.left.step();
-                a.cue_left = a.cue_left.add(a.cue_left_dy);
-            }
-            if a.right_last as i32 > y {
-                a.right.step();
-                a.cue_right = a.cue_right.add(a.cue_right_dy);
-            }
-            i += 1;
-        }
+            let (xl, xr) = (a.left.dda.x, a.right.dda.x);
+            a.z_left = a.z_left.step(a.plane.dzdx, xl - a.xl).step(a.plane.dzdy, 1);
+            a.xl = xl;
+            a.xr = xr;
+            true
+        });
     }
 
     /// Sweeps the row left to right, filling it from a **front** polygon at a time.
     ///
-    /// The seeds' cases 1 and 2 — a polygon in front at both ends of an overlap is in front
-    /// throughout, depths being linear in x — applied to whole overlaps: the front beats every
-    /// other open polygon from the current column up to `until`, the first column where one of
-    /// them wins (their crossing, case 3, found exactly by bisection: the sign of a linear
-    /// difference changes once). Until then the row is filled with no depth test. A polygon
-    /// that opens costs one check against the front (two depth evaluations, bisection only if
-    /// they cross); one that closes behind it costs nothing. The front is sought again among
-    /// the open polygons only when it closes, is overtaken at its crossing, or a newcomer is
-    /// in front of it — that is, where the visible surface changes.
+    /// A polygon in front at both ends of an overlap is in front throughout, depths being
+    /// linear in x — applied to whole overlaps: the front beats every other open polygon from
+    /// the current column up to `until`, the first column where one of them wins (their
+    /// crossing, found exactly by bisection: the sign of a linear difference changes once).
+    /// Until then the row is filled with no depth test. A polygon that opens costs one check
+    /// against the front (two depth evaluations, bisection only if they cross); one that
+    /// closes behind it costs nothing. The front is sought again among the open polygons only
+    /// when it closes, is overtaken at its crossing, or a newcomer is in front of it — that
+    /// is, where the visible surface changes.
     ///
     /// The open polygons sit in a min-heap on their span's end (retiring costs O(log n)).
-    fn resolve_row(&mut self, width: usize, background: Rgb565, stats: &mut FrameStats) {
+    fn resolve_row(
+        &mut self,
+        width: usize,
+        background: Rgb565,
+        want_depth: bool,
+        stats: &mut FrameStats,
+    ) {
         let w = width as i32;
-        let affine = self
-            .cue
-            .is_some_and(|c| c.interpolation == Interpolation::Affine);
-        let (active, open) = (&self.active, &mut self.open);
+        let affine = self.affine_cue().is_some();
+        let (active, sorted, open) = (&self.active, &self.sorted, &mut self.open);
         open.clear();
         let (mut cur, mut k) = (0i32, 0usize);
-        // The front polygon and the first column where it may no longer be in front.
+        // The front polygon (its slot) and the first column where it may no longer be in front.
         let mut front: Option<(usize, i32)> = None;
         loop {
-            while k < active.len() && active[k].xl <= cur {
-                if active[k].xr > cur {
+            while let Some(&slot) = sorted.get(k) {
+                let a = &active[slot as usize];
+                if a.xl > cur {
+                    break;
+                }
+                if a.xr > cur {
                     // Cannot fail: `open` has the active list's capacity.
-                    let _ = open.push((active[k].xr, k as u16));
+                    let _ = open.push((a.xr, slot));
                     if let Some((p, until)) = front {
-                        front = challenge(active, p, k, cur).map(|u| (p, until.min(u)));
+                        front = challenge(active, p, slot as usize, cur).map(|u| (p, until.min(u)));
                     }
                 }
                 k += 1;
             }
-            let next_start = active.get(k).map_or(w, |a| a.xl).min(w);
+            let next_start = sorted.get(k).map_or(w, |&s| active[s as usize].xl).min(w);
             if front.is_none() && !open.is_empty() {
                 front = Some(match open.len() {
                     // Alone: in front until it closes (the common case on a mesh).
@@ -460,17 +535,24 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
             }
             let next = match front {
                 Some((p, until)) => {
-                    let next = next_start.min(active[p].xr).min(until).min(w);
-                    fill(&mut self.depth, &mut self.intensity, &active[p], cur, next);
+                    let a = &active[p];
+                    let next = next_start.min(a.xr).min(until).min(w);
+                    let (x0, x1) = (cur as usize, next as usize);
+                    self.intensity[x0..x1].fill(a.color);
+                    if want_depth {
+                        fill_depth(&mut self.depth[x0..x1], a, cur);
+                    }
                     if affine {
-                        cue_span(&mut self.intensity, &active[p], cur, next);
+                        cue_span(&mut self.intensity, a, cur, next);
                     }
                     next
                 }
                 None => {
                     let (x0, x1) = (cur as usize, next_start as usize);
                     self.intensity[x0..x1].fill(background);
-                    self.depth[x0..x1].fill(N::MAX);
+                    if want_depth {
+                        self.depth[x0..x1].fill(N::MAX);
+                    }
                     next_start
                 }
             };
@@ -492,8 +574,8 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize>
     }
 }
 
-impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize> Renderer<N>
-    for Scanline<N, W, P, E, A>
+impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize> Renderer<N>
+    for Scanline<N, W, V, P, A>
 {
     const NAME: &'static str = "scanline";
     const RAM_BYTES: usize = Self::RAM_BYTES;
@@ -507,41 +589,98 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const A: usize> 
     }
 }
 
+/// The edge of one side of a polygon that crosses row `y`, walking its vertex ring from
+/// position `at` (forward or backward) downwards; `None` if the side ends above `y`.
+fn walk_from<N: Copy>(
+    ring: &[RasterVertex<N>],
+    mut at: u8,
+    forward: bool,
+    y: i32,
+    side: Side,
+    cfg: &Config,
+) -> Option<Walk> {
+    let n = ring.len();
+    for _ in 0..n {
+        let next = if forward {
+            (at as usize + 1) % n
+        } else {
+            (at as usize + n - 1) % n
+        };
+        let (p, q) = (&ring[at as usize], &ring[next]);
+        if q.y < p.y {
+            return None; // past the bottom
+        }
+        if q.y > p.y {
+            if let Some(e) = edge_between(p, q, side, cfg).filter(|e| e.last_row as i32 >= y) {
+                return Some(Walk {
+                    dda: e.dda_at(y, cfg.subpixel_bits as u32),
+                    last: e.last_row,
+                    at: next as u8,
+                });
+            }
+        }
+        at = next as u8;
+    }
+    None
+}
+
+/// Affine cue on one edge from row `y`: the exact factor where the edge crosses `y` and the
+/// linear step per row to where it crosses its last row (Gouraud down an edge).
+fn edge_cue<N: Scalar>(c: &Cue<N>, plane: &DepthPlane<N>, w: &Walk, y: i32) -> [N; 2] {
+    // Depth at the crossing: the plane at column x, stepped back by the fraction.
+    let on_edge =
+        |d: &Dda, row: i32| c.at_depth(plane.at(d.x, row).sub(plane.dzdx.mul(d.fraction())));
+    let cue = on_edge(&w.dda, y);
+    let rows = w.last as i32 - y;
+    if rows <= 0 {
+        return [cue, N::ZERO];
+    }
+    // The walk at the edge's last row: stepped there (exact, the same state as set up there).
+    let mut end = w.dda;
+    for _ in 0..rows {
+        end.step();
+    }
+    let n = N::from_f32(rows as f32).unwrap_or(N::ONE);
+    [
+        cue,
+        on_edge(&end, w.last as i32)
+            .sub(cue)
+            .div(n)
+            .unwrap_or(N::ZERO),
+    ]
+}
+
 #[inline]
 fn depth_at<N: Scalar>(a: &Active<N>, x: i32) -> N {
-    a.z_left.step(a.dzdx, x - a.xl)
+    a.z_left.step(a.plane.dzdx, x - a.xl)
 }
 
 /// Affine depth cue across `x0..x1` (already filled with the polygon's colour): the factor
 /// interpolated linearly between the edges' crossings of the row (one division per span).
 fn cue_span<N: Scalar>(intensity: &mut [Rgb565], a: &Active<N>, x0: i32, x1: i32) {
-    let (cl, cr) = (a.left.crossing::<N>(), a.right.crossing::<N>());
-    let slope = a
-        .cue_right
-        .sub(a.cue_left)
-        .div(cr.sub(cl))
-        .unwrap_or(N::ZERO);
+    let (cl, cr) = (a.left.dda.crossing::<N>(), a.right.dda.crossing::<N>());
+    let slope = a.cue[2].sub(a.cue[0]).div(cr.sub(cl)).unwrap_or(N::ZERO);
     let at = |x: i32| N::from_f32(x as f32).unwrap_or(N::ZERO);
-    let mut f = a.cue_left.add(at(x0).sub(cl).mul(slope));
+    let mut f = a.cue[0].add(at(x0).sub(cl).mul(slope));
     for c in &mut intensity[x0 as usize..x1 as usize] {
         *c = shade(*c, f);
         f = f.add(slope);
     }
 }
 
-/// Fills `x0..x1` with one polygon, stepping its depth one pixel at a time.
+/// The depth of one polygon across a piece of row starting at column `x0`, stepped one pixel
+/// at a time.
 #[inline]
-fn fill<N: Scalar>(depth: &mut [N], intensity: &mut [Rgb565], a: &Active<N>, x0: i32, x1: i32) {
+fn fill_depth<N: Scalar>(depth: &mut [N], a: &Active<N>, x0: i32) {
     let mut z = depth_at(a, x0);
-    let (x0, x1) = (x0 as usize, x1 as usize);
-    for d in &mut depth[x0..x1] {
+    for d in depth {
         *d = z;
-        z = z.step(a.dzdx, 1);
+        z = z.step(a.plane.dzdx, 1);
     }
-    intensity[x0..x1].fill(a.color);
 }
 
-/// Whether polygon `p` is visible over `q` at column `x`: nearer, or as near and first.
+/// Whether the polygon in slot `p` is visible over the one in slot `q` at column `x`: nearer,
+/// or as near and first in the scene.
 #[inline]
 fn beats<N: Scalar>(active: &[Active<N>], p: usize, q: usize, x: i32) -> bool {
     let (zp, zq) = (depth_at(&active[p], x), depth_at(&active[q], x));
@@ -599,9 +738,9 @@ fn winner<N: Scalar>(active: &[Active<N>], mut open: impl Iterator<Item = usize>
 /// at exactly the sizes required plus its two rows.
 pub fn ram_bytes<N: Scalar>(req: &Requirements) -> usize {
     use core::mem::size_of;
-    req.polygons as usize * size_of::<PolygonEntry<N>>()
-        + req.edges as usize * size_of::<Edge>()
+    req.vertices as usize * size_of::<RasterVertex<N>>()
+        + req.polygons as usize * (size_of::<Polygon>() + size_of::<u16>())
         + req.active_polygons as usize
-            * (size_of::<Active<N>>() + size_of::<(i32, u16)>() + size_of::<i16>())
+            * (size_of::<Active<N>>() + 2 * size_of::<u16>() + size_of::<(i32, u16)>())
         + req.width as usize * (size_of::<N>() + size_of::<Rgb565>())
 }

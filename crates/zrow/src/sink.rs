@@ -13,7 +13,9 @@ pub struct Row<'a, N> {
     pub y: u16,
     /// The colour of every pixel, left to right.
     pub intensity: &'a [Rgb565],
-    /// The visible depth at every pixel (the format's maximum where nothing is drawn).
+    /// The visible depth at every pixel (the format's maximum where nothing is drawn); empty
+    /// when the sink said it does not read it ([`RowSink::WANTS_DEPTH`]) and the renderer
+    /// skipped it.
     pub depth: &'a [N],
 }
 
@@ -22,6 +24,10 @@ pub struct Row<'a, N> {
 pub trait RowSink<N> {
     /// The sink's error.
     type Error;
+    /// Whether the sink reads [`Row::depth`]. A sink that only shows colours says `false`, and
+    /// renderers that need no depth row of their own (the scan-line method) then skip writing
+    /// one: [`Row::depth`] is empty. Default `true`.
+    const WANTS_DEPTH: bool = true;
     /// Takes one row.
     fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), Self::Error>;
 }
@@ -53,6 +59,7 @@ impl<'a> FrameBuffer<'a> {
 
 impl<N> RowSink<N> for FrameBuffer<'_> {
     type Error = Infallible;
+    const WANTS_DEPTH: bool = false;
     fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), Infallible> {
         let start = row.y as usize * self.width;
         let n = row.intensity.len().min(self.width);
@@ -68,6 +75,7 @@ pub struct DrawTargetSink<'a, D>(pub &'a mut D);
 
 impl<N, D: DrawTarget<Color = Rgb565>> RowSink<N> for DrawTargetSink<'_, D> {
     type Error = D::Error;
+    const WANTS_DEPTH: bool = false;
     fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), D::Error> {
         let area = Rectangle::new(
             Point::new(0, row.y as i32),

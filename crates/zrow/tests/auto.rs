@@ -100,7 +100,7 @@ fn cull_only_draws_the_cube_as_the_scan_line_method_does() {
     cull_only_equals_scanline::<Q16_16>();
     cull_only_equals_scanline::<f32>();
     // What the choice saves in RAM, printed (its instructions: emu/run.sh, `cull-only`).
-    type S = zrow::Scanline<Q16_16, 240, 512, 2048, 128>;
+    type S = zrow::Scanline<Q16_16, 240, 2048, 512, 128>;
     type C = CullOnly<Q16_16, 240, 512, 2048>;
     type O = Ordered<Q16_16, 240, 512, 2048>;
     println!(

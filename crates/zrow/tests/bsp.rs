@@ -58,7 +58,7 @@ fn culled_meshes_equal_the_scanline_frame() {
             zrow_scenes::with_scene::<Q16_16, _>(name, angle, |scene, cfg, _| {
                 let mut a = Capture::<Q16_16>::new(cfg.width as usize, cfg.height as usize);
                 let mut b = a.clone();
-                let scanline = &mut *Box::new(Scanline::<Q16_16, 240, 4096, 16384, 1024>::new());
+                let scanline = &mut *Box::new(Scanline::<Q16_16, 240, 16384, 4096, 1024>::new());
                 scanline.render(scene, cfg, &mut a).unwrap();
                 let s = Renderer::render(&mut *Box::new(Tree::<Q16_16>::new()), scene, cfg, &mut b)
                     .unwrap();

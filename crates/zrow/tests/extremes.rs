@@ -774,7 +774,7 @@ fn bad_input<N: Scalar>() {
         let scene = ScreenScene {
             mesh: Mesh::new(verts, faces),
         };
-        let mut r = Box::new(Scanline::<N, 16, 4, 12, 2>::new());
+        let mut r = Box::new(Scanline::<N, 16, 12, 4, 2>::new());
         let mut cap = Capture::<N>::new(16, 16);
         let e = r.render(&scene, &cfg, &mut cap);
         (e, cap.rows_received)
@@ -884,7 +884,7 @@ fn bad_input<N: Scalar>() {
             normals: &[],
         },
     };
-    let mut r = Box::new(Scanline::<N, 16, 4, 12, 2>::new());
+    let mut r = Box::new(Scanline::<N, 16, 12, 4, 2>::new());
     let mut cap = Capture::<N>::new(16, 16);
     assert_eq!(
         r.render(&scene, &Config::screen(17, 16), &mut cap),
@@ -920,7 +920,7 @@ fn e23_bad_input_is_a_typed_error_before_any_row() {
     let scene = ScreenScene {
         mesh: Mesh::new(&v, &faces),
     };
-    let mut r = Box::new(Scanline::<f32, 16, 4, 12, 2>::new());
+    let mut r = Box::new(Scanline::<f32, 16, 12, 4, 2>::new());
     let mut cap = Capture::<f32>::new(16, 16);
     assert_eq!(
         r.render(&scene, &Config::screen(16, 16), &mut cap),

@@ -41,7 +41,7 @@ macro_rules! for_formats {
 /// frames up to `H` rows for the z-buffer.
 fn methods<N: Scalar, const W: usize, const H: usize>() -> Vec<Method<N>> {
     vec![
-        Method::new::<Scanline<N, W, 16, 64, 8>>(),
+        Method::new::<Scanline<N, W, 64, 16, 8>>(),
         Method::new::<ZBuffer<N, W, H>>(),
         Method::tiled::<W, 2, 16, 64>(),
         Method::new::<DepthSort<N, W, 16, 64, 64>>(),

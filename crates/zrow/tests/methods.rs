@@ -28,7 +28,7 @@ const H: u16 = 40;
 /// z-buffer, exact only beyond its depth resolution, is held to that in tests/tiled.rs).
 macro_rules! each_exact_method {
     ($f:ident::<$n:ty>($($args:expr),*)) => {{
-        $f::<$n, Scanline<$n, 64, 512, 2048, 512>>($($args),*);
+        $f::<$n, Scanline<$n, 64, 2048, 512, 512>>($($args),*);
         $f::<$n, ZBuffer<$n, 64, 64>>($($args),*);
         $f::<$n, DepthSort<$n, 64, 512, 2048, 16384>>($($args),*);
         $f::<$n, Bsp<$n, 64, 512, 2048, 16384, 1024>>($($args),*);

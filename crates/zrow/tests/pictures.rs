@@ -25,7 +25,7 @@ fn draw<N: Scalar>(
         mesh: Mesh::new(&v, &f),
     };
     let mut display = MockDisplay::new();
-    let mut r = Scanline::<N, 16, 8, 32, 8>::new();
+    let mut r = Scanline::<N, 16, 32, 8, 8>::new();
     r.render(
         &scene,
         &Config::screen(w, h),

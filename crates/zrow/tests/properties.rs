@@ -149,7 +149,7 @@ mod no_panic {
             })
             .collect();
         let mesh = Mesh::new(&verts, &f);
-        let mut r = Box::new(zrow::Scanline::<N, 32, 64, 256, 64>::new());
+        let mut r = Box::new(zrow::Scanline::<N, 32, 256, 64, 64>::new());
         let mut cap = Capture::<N>::new(32, 24);
         let result = if model {
             let objects = [Object {

@@ -29,7 +29,7 @@ fn frame<R: Renderer<Q16_16>>(r: &mut R, scene: &str, preset: &str) -> Result<Ve
 #[test]
 fn perspective_cue_gives_every_method_the_same_frame() {
     let scan = frame(
-        &mut *Box::new(Scanline::<Q16_16, S, 64, 256, 64>::new()),
+        &mut *Box::new(Scanline::<Q16_16, S, 256, 64, 64>::new()),
         "cube",
         "q16",
     )
@@ -42,7 +42,7 @@ fn perspective_cue_gives_every_method_the_same_frame() {
     // The cue changes the picture (the cube spans w ≈ 3.6..5.3, the cue 3..6).
     let mut flat = vec![Rgb565::BLACK; S * S];
     zrow_scenes::with_scene_math::<Q16_16, _>("cube", 0.0, MathLib::Libm, |sc, _, _| {
-        Scanline::<Q16_16, S, 64, 256, 64>::new()
+        Scanline::<Q16_16, S, 256, 64, 64>::new()
             .render(sc, &flat_cfg, &mut FrameBuffer::new(&mut flat, S))
             .unwrap();
     });
@@ -110,7 +110,7 @@ fn affine_cue_is_unsupported_off_the_scan_line_and_fails_before_any_row() {
     assert_eq!(rows.0, 0);
     // The scan-line method draws it.
     frame(
-        &mut *Box::new(Scanline::<Q16_16, S, 64, 256, 64>::new()),
+        &mut *Box::new(Scanline::<Q16_16, S, 256, 64, 64>::new()),
         "cube",
         "q16-affine",
     )
@@ -135,13 +135,13 @@ fn max_diff(a: &[Rgb565], b: &[Rgb565]) -> u8 {
 fn affine_and_perspective_cues_differ_where_depth_recedes_and_agree_where_it_is_screen_linear() {
     // Model mode: the cube's faces recede, w is not linear in screen space.
     let persp = frame(
-        &mut *Box::new(Scanline::<Q16_16, S, 64, 256, 64>::new()),
+        &mut *Box::new(Scanline::<Q16_16, S, 256, 64, 64>::new()),
         "cube",
         "q16",
     )
     .unwrap();
     let affine = frame(
-        &mut *Box::new(Scanline::<Q16_16, S, 64, 256, 64>::new()),
+        &mut *Box::new(Scanline::<Q16_16, S, 256, 64, 64>::new()),
         "cube",
         "q16-affine",
     )
@@ -176,7 +176,7 @@ fn affine_and_perspective_cues_differ_where_depth_recedes_and_agree_where_it_is_
             ..PRESET_CUE
         });
         let mut px = vec![Rgb565::BLACK; S * S];
-        Scanline::<Q16_16, S, 8, 32, 8>::new()
+        Scanline::<Q16_16, S, 32, 8, 8>::new()
             .render(&scene, &cfg, &mut FrameBuffer::new(&mut px, S))
             .unwrap();
         px
@@ -206,7 +206,7 @@ fn perspective_cue_is_the_flat_colour_times_the_factor_at_each_pixels_depth() {
     let p = by_name("q16").unwrap();
     let (mut cued, mut flat) = (Rows(vec![]), Rows(vec![]));
     with_preset_scene::<Q16_16, _>("mesh1k", p, |sc, cfg, _| {
-        let mut r = Box::new(Scanline::<Q16_16, S, 1024, 3072, 128>::new());
+        let mut r = Box::new(Scanline::<Q16_16, S, 3072, 1024, 128>::new());
         r.render(sc, cfg, &mut cued).unwrap();
         let mut f = *cfg;
         f.shading = Shading::Flat;
@@ -270,7 +270,7 @@ fn linear_w_depth_is_wrong_between_vertices_and_inverse_w_is_not() {
             }
         }
         with_preset_scene::<Q16_16, _>("cube", p, |sc, cfg, _| {
-            Scanline::<Q16_16, S, 64, 256, 64>::new()
+            Scanline::<Q16_16, S, 256, 64, 64>::new()
                 .render(sc, cfg, &mut D(&mut depths))
                 .unwrap();
         });

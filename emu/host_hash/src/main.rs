@@ -25,7 +25,7 @@ include!("../../src/presets.rs");
 
 /// The bench's standard renderer (emu/src/main.rs): 240-pixel rows, 1024 polygons, 3072
 /// edges, 512 active polygons.
-type Standard<N> = Scanline<N, 240, 1024, 3072, 512>;
+type Standard<N> = Scanline<N, 240, 3072, 1024, 512>;
 
 /// Renders `name` in format `N` with a new `R` and prints its line; false on error. Runs on
 /// the caller's thread: main gives it a stack big enough for the renderers' inline tables.

@@ -8,7 +8,7 @@ use zrow_st7789::mock::{MockBus, Write};
 use zrow_st7789::{line_bytes, St7789Rows, Window};
 
 /// Host capacities big enough for every test scene (standard scenes included).
-pub type Big<N> = Scanline<N, 240, 1024, 4096, 512>;
+pub type Big<N> = Scanline<N, 240, 4096, 1024, 512>;
 
 /// Line buffer for the widest window.
 pub const B: usize = line_bytes(240);

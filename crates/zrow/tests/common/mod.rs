@@ -9,7 +9,7 @@ use zrow::{
 };
 
 /// Host capacities big enough for every test scene.
-pub type Big<N> = Scanline<N, 256, 4096, 16384, 1024>;
+pub type Big<N> = Scanline<N, 256, 16384, 4096, 1024>;
 
 /// A whole frame captured from rows.
 #[derive(Clone, Debug, PartialEq)]
@@ -554,7 +554,7 @@ impl<N: Scalar> Method<N> {
 /// beyond its resolution), depth-sort, Warnock, BSP, A-buffer.
 pub fn every_method<N: Scalar>() -> Vec<Method<N>> {
     vec![
-        Method::new::<Scanline<N, 64, 256, 1024, 256>>(),
+        Method::new::<Scanline<N, 64, 1024, 256, 256>>(),
         Method::new::<zrow::ZBuffer<N, 64, 64>>(),
         Method::tiled::<64, 8, 256, 1024>(),
         Method::new::<zrow::depthsort::DepthSort<N, 64, 256, 1024, 4096>>(),
