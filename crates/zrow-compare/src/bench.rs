@@ -19,7 +19,7 @@ use zrow::{Scanline, ScreenScene, Vec3, ZBuffer, Q16_16};
 pub const SIZE: usize = 512;
 /// Polygon capacity: the largest scene.
 const P: usize = 60_000;
-/// Edge capacity: three per triangle.
+/// Edge capacity, and the scan-line's vertex slots: three per triangle.
 const E: usize = 3 * P;
 /// Active-list capacity (scan-line): polygons crossing one row, with room to spare.
 const A: usize = 8_192;
@@ -37,7 +37,7 @@ pub fn methods() -> Vec<Method> {
     vec![
         method::<DepthSort<Q16_16, SIZE, P, E, Q>>(Some(ram::depthsort)),
         method::<ZBuffer<Q16_16, SIZE, SIZE>>(Some(ram::zbuffer)),
-        method::<Scanline<Q16_16, SIZE, E, P, A>>(Some(ram::scanline)),
+        method::<Scanline<Q16_16, SIZE, E, P, A, u32>>(Some(ram::scanline)),
         method::<Bsp<Q16_16, SIZE, P, E, Q, D>>(Some(ram::bsp)),
         method::<ABuffer<Q16_16, SIZE, P, E, 16>>(Some(ram::abuffer)),
         method::<Tiled<Q16_16, SIZE, 16, P, E>>(Some(ram::tiled)),

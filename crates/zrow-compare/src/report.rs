@@ -43,21 +43,25 @@ impl SceneInfo {
             let mut count = vec![0u32; SIZE * SIZE];
             let bits = cfg.subpixel_bits as u32;
             scene
-                .polygons(&cfg, &mut |poly| {
-                    if let Some(sp) = zrow::raster::setup(poly, &cfg)? {
-                        let (y0, y1) = (sp.first_row as i32, sp.last_row as i32);
-                        zrow::polygons::walk_edges(&sp.edges, bits, y0, y1, |y, xl, xr| {
-                            let (x0, x1) = (xl.clamp(0, SIZE as i32), xr.clamp(0, SIZE as i32));
-                            for x in x0..x1 {
-                                if let Some(c) = count.get_mut(y as usize * SIZE + x as usize) {
-                                    *c += 1;
+                .polygons(
+                    &cfg,
+                    &mut zrow::scene::VertexBuffer::new(&mut []),
+                    &mut |poly| {
+                        if let Some(sp) = zrow::raster::setup(&poly.to_raster(), &cfg)? {
+                            let (y0, y1) = (sp.first_row as i32, sp.last_row as i32);
+                            zrow::polygons::walk_edges(&sp.edges, bits, y0, y1, |y, xl, xr| {
+                                let (x0, x1) = (xl.clamp(0, SIZE as i32), xr.clamp(0, SIZE as i32));
+                                for x in x0..x1 {
+                                    if let Some(c) = count.get_mut(y as usize * SIZE + x as usize) {
+                                        *c += 1;
+                                    }
                                 }
-                            }
-                            true
-                        });
-                    }
-                    Ok(())
-                })
+                                true
+                            });
+                        }
+                        Ok(())
+                    },
+                )
                 .expect("the scene is valid");
             SceneInfo {
                 polygons: s.faces.len(),

@@ -4,7 +4,7 @@ use embedded_graphics_core::pixelcolor::{raw::RawU16, Rgb565};
 use std::convert::Infallible;
 use std::time::{Duration, Instant};
 use zrow::presets::{DepthStore, Format, Preset};
-use zrow::raster::RasterPolygon;
+use zrow::scene::{Polygon, VertexBuffer};
 use zrow::shading::Shading;
 use zrow::tiled::Tiled;
 use zrow::{Config, Error, Renderer, Row, RowSink, Scalar, Scanline, Scene, Q16_16, Q24_8};
@@ -53,10 +53,11 @@ impl<N: Scalar> Scene<N> for IdScene<'_, N> {
     fn polygons(
         &self,
         cfg: &Config,
-        f: &mut dyn FnMut(&RasterPolygon<N>) -> Result<(), Error>,
+        vertices: &mut VertexBuffer<'_, N>,
+        f: &mut dyn FnMut(&Polygon<'_, N>) -> Result<(), Error>,
     ) -> Result<(), Error> {
-        self.0.polygons(cfg, &mut |p| {
-            let mut p = p.clone();
+        self.0.polygons(cfg, vertices, &mut |p| {
+            let mut p = *p;
             p.color = Rgb565::from(RawU16::new((p.face + 1) as u16));
             f(&p)
         })

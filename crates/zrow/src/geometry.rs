@@ -1,33 +1,45 @@
-//! Geometry: transform, back-face culling, clipping, projection and snapping.
+//! Geometry: transform, projection, back-face culling, clipping and snapping — the stage every
+//! method shares.
 //!
-//! - **Model mode** ([`ModelScene`]): vertices go model → view by one affine transform per
-//!   object; the seeds' normal-versus-view test drops back faces ([`crate::backface`]); the face
-//!   is flat (Lambert) shaded from the directional light. The face normal is the cross product
-//!   of the face's first two view-space edges, or, for a mesh with precomputed
-//!   [`normals`](crate::scene::Mesh::normals), the given normal taken to view space by the
-//!   cofactor matrix of the object's transform (right for any scale or mirror). Depth and
-//!   coverage come from the vertices either way; only shading, and the cull decision for a
-//!   face seen within rounding of edge-on, can differ; the polygon is clipped in clip space
-//!   against the near and far planes (so only w ≥ near > 0 is ever divided by) and a guard band
-//!   ([`GUARD_BAND`](crate::raster::GUARD_BAND) pixels round the viewport), then divided and snapped. Depth is
+//! - **Model mode** ([`ModelScene`]): each vertex of an object's mesh goes model → view by one
+//!   affine transform per object (summed exactly, rounded once: [`Affine::apply_checked`]),
+//!   then to clip space and, when it lies inside the view volume and the guard band
+//!   ([`GUARD_BAND`](crate::raster::GUARD_BAND) pixels round the viewport), straight to snapped
+//!   sub-pixels — once per vertex per frame, into the renderer's [`VertexBuffer`], whatever
+//!   number of faces share it. A face whose vertices all made it is then a few index loads:
+//!   its **winding on the snapped vertices** decides back-facing (two multiplies, nothing
+//!   normalised; zero area counts as back-facing), and only faces that survive are lit: flat
+//!   Lambert from the directional light, with the face normal in model space — the cross
+//!   product of its first two edges (exact in fixed point), or the mesh's precomputed
+//!   [`normals`](crate::scene::Mesh::normals) — taken to view space by the cofactor matrix of
+//!   the object's transform (right for any scale or mirror). A face with a vertex outside
+//!   takes the clipping path: its corners are transformed again and the polygon is clipped in
+//!   clip space against the near and far planes (so only w ≥ near > 0 is ever divided by) and
+//!   the guard band, then projected and snapped like the rest. Depth is
 //!   `DEPTH_RANGE · (1 − near/w) · far/(far − near)` under perspective (affine in 1/w, hence
 //!   linear in screen space, 0 at the near plane and `DEPTH_RANGE` at the far plane) and linear
 //!   in w under an orthographic camera.
-//! - **Screen-space mode** ([`ScreenScene`]): vertices are already pixels; polygons are clipped
-//!   to the guard band and snapped.
+//! - **Screen-space mode** ([`ScreenScene`]): vertices are already pixels: snapped once each,
+//!   and polygons reaching beyond the guard band are clipped to it.
 //!
-//! Clipping happens before snapping and before any integer conversion, so coordinates of any
-//! size (±32767 in Q16.16, ±1e30 in f32) neither overflow nor reach outside the screen.
-//! A shared edge is always cut from its inside end, so both neighbours get the same point.
+//! Projection goes from clip space to sub-pixels in one exact, once-rounded step per
+//! coordinate ([`Scalar::ratio`]): `x = c + round(c · x_clip / w)` with `c` half the viewport
+//! in sub-pixels. Clipping happens before snapping and before any integer conversion, so
+//! coordinates of any size (±32767 in Q16.16, ±1e30 in f32) neither overflow nor reach outside
+//! the screen. A vertex pushed beyond the number format by its object's transform is
+//! [`Error::NonFinite`] for the first face that uses it. A shared edge is always cut from its
+//! inside end, so both neighbours get the same point.
 
-use crate::backface::is_back_face;
 use crate::error::Error;
 use crate::math::{Affine, Vec3};
 use crate::number::Scalar;
 use crate::raster::{
-    Config, Cull, RasterPolygon, RasterVertex, GUARD_BAND, MAX_FACE_VERTICES, MAX_POLYGON_VERTICES,
+    signed_area2, Config, Cull, RasterVertex, GUARD_BAND, MAX_FACE_VERTICES, MAX_POLYGON_VERTICES,
 };
-use crate::scene::{Face, Mesh, MeshIndex, ModelScene, Projection, Scene, ScreenScene};
+use crate::scene::{
+    Face, Mesh, MeshIndex, ModelScene, Polygon, Projection, Scene, ScreenScene, VertexBuffer,
+    INDEXED_CORNERS,
+};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use heapless::Vec;
 
@@ -137,26 +149,188 @@ fn gather<N: Scalar, I: MeshIndex>(
     Ok(out)
 }
 
-fn snap_all<N: Scalar>(
-    poly: &Poly<Vec3<N>>,
-    cfg: &Config,
+/// What a vertex slot holds when its vertex could not be projected (outside the view volume
+/// or the guard band, or not a number): faces using it take the clipping path.
+const UNPROJECTED: i32 = i32::MIN;
+
+fn unprojected<N: Scalar>() -> RasterVertex<N> {
+    RasterVertex {
+        x: UNPROJECTED,
+        y: 0,
+        z: N::ZERO,
+    }
+}
+
+/// A screen-space point snapped to the sub-pixel grid.
+fn snap<N: Scalar>(p: &Vec3<N>, s: u32, face: u32) -> Result<RasterVertex<N>, Error> {
+    Ok(RasterVertex {
+        x: p.x.snap(s).ok_or(Error::NonFinite { face })?,
+        y: p.y.snap(s).ok_or(Error::NonFinite { face })?,
+        z: p.z,
+    })
+}
+
+/// 0, 1, 2, …: the corners of a polygon whose vertices are listed in order.
+const IN_ORDER: [u32; MAX_POLYGON_VERTICES] = {
+    let mut a = [0u32; MAX_POLYGON_VERTICES];
+    let mut k = 0;
+    while k < MAX_POLYGON_VERTICES {
+        a[k] = k as u32;
+        k += 1;
+    }
+    a
+};
+
+/// A polygon as geometry hands it to the renderer.
+struct Out {
     color: Rgb565,
     alpha: u8,
     face: u32,
-) -> Result<RasterPolygon<N>, Error> {
-    let s = cfg.subpixel_bits as u32;
-    let mut vertices = Vec::new();
-    for p in poly {
-        let x = p.x.snap(s).ok_or(Error::NonFinite { face })?;
-        let y = p.y.snap(s).ok_or(Error::NonFinite { face })?;
-        let _ = vertices.push(RasterVertex { x, y, z: p.z });
+}
+
+/// Hands over a polygon whose corners are slots of the buffer already (a face whose vertices
+/// all projected). One with more than [`INDEXED_CORNERS`] corners is first copied into a run
+/// of consecutive slots (or, without room, into scratch).
+fn emit_indexed<N: Scalar>(
+    buf: &mut VertexBuffer<'_, N>,
+    corners: &mut [u32],
+    out: Out,
+    f: &mut dyn FnMut(&Polygon<'_, N>) -> Result<(), Error>,
+) -> Result<(), Error> {
+    if corners.len() > INDEXED_CORNERS {
+        let mut v = [RasterVertex::default(); MAX_POLYGON_VERTICES];
+        for (d, &c) in v.iter_mut().zip(corners.iter()) {
+            *d = buf.as_slice()[c as usize];
+        }
+        return emit_new(buf, &v[..corners.len()], out, f);
     }
-    Ok(RasterPolygon {
-        vertices,
-        color,
-        alpha,
-        face,
+    f(&Polygon {
+        vertices: buf.as_slice(),
+        corners,
+        cached: true,
+        color: out.color,
+        alpha: out.alpha,
+        face: out.face,
     })
+}
+
+/// Hands over a polygon of new vertices (clipped, or copied for a run): as a run of
+/// consecutive slots of the buffer, or, without room, in scratch.
+fn emit_new<N: Scalar>(
+    buf: &mut VertexBuffer<'_, N>,
+    v: &[RasterVertex<N>],
+    out: Out,
+    f: &mut dyn FnMut(&Polygon<'_, N>) -> Result<(), Error>,
+) -> Result<(), Error> {
+    let n = v.len();
+    let mut corners = [0u32; MAX_POLYGON_VERTICES];
+    let (vertices, cached) = match buf.claim(n) {
+        Some(start) => {
+            buf.slots_from(start)[..n].copy_from_slice(v);
+            for (k, c) in corners[..n].iter_mut().enumerate() {
+                *c = (start + k) as u32;
+            }
+            (buf.as_slice(), true)
+        }
+        None => {
+            corners[..n].copy_from_slice(&IN_ORDER[..n]);
+            (v, false)
+        }
+    };
+    f(&Polygon {
+        vertices,
+        corners: &corners[..n],
+        cached,
+        color: out.color,
+        alpha: out.alpha,
+        face: out.face,
+    })
+}
+
+/// Hands over, in scratch, a polygon the buffer had no room for although all its vertices
+/// projected: counted as [`emit_indexed`] would have claimed it (a run only past
+/// [`INDEXED_CORNERS`] corners), so [`VertexBuffer::needed`] is what a buffer with room uses.
+fn emit_unclaimed<N: Scalar>(
+    buf: &mut VertexBuffer<'_, N>,
+    v: &[RasterVertex<N>],
+    out: Out,
+    f: &mut dyn FnMut(&Polygon<'_, N>) -> Result<(), Error>,
+) -> Result<(), Error> {
+    if v.len() > INDEXED_CORNERS {
+        buf.claim_none(v.len());
+    }
+    f(&Polygon {
+        vertices: v,
+        corners: &IN_ORDER[..v.len()],
+        cached: false,
+        color: out.color,
+        alpha: out.alpha,
+        face: out.face,
+    })
+}
+
+/// Checks a face's size and indices and writes its corners (`base` + index) into `corners`;
+/// returns the corner count and whether every corner's slot holds a projected vertex.
+fn corners_of<N: Scalar, I: MeshIndex>(
+    face: &Face<'_, I>,
+    vertex_count: usize,
+    base: Option<usize>,
+    buf: &VertexBuffer<'_, N>,
+    corners: &mut [u32; MAX_POLYGON_VERTICES],
+    no: u32,
+) -> Result<(usize, bool), Error> {
+    let n = face.indices.len();
+    if n < 3 {
+        return Err(Error::TooFewVertices { face: no });
+    }
+    if n > MAX_FACE_VERTICES {
+        return Err(Error::TooManyVertices { face: no });
+    }
+    let slots = buf.as_slice();
+    let mut projected = base.is_some();
+    let b = base.unwrap_or(0);
+    for (c, &i) in corners.iter_mut().zip(face.indices) {
+        let i = i.index();
+        if i >= vertex_count {
+            return Err(Error::IndexOutOfRange {
+                face: no,
+                index: i as u32,
+            });
+        }
+        *c = (b + i) as u32;
+        projected &= slots.get(b + i).is_some_and(|v| v.x != UNPROJECTED);
+    }
+    Ok((n, projected))
+}
+
+/// Twice the signed area of the polygon with these corners in the buffer (positive =
+/// clockwise on the display), exact.
+#[inline]
+fn area_of<N: Copy>(slots: &[RasterVertex<N>], corners: &[u32]) -> i64 {
+    let p = |k: usize| &slots[corners[k] as usize];
+    if let [a, b, c] = corners {
+        let (a, b, c) = (
+            &slots[*a as usize],
+            &slots[*b as usize],
+            &slots[*c as usize],
+        );
+        // Shoelace of a triangle, as two products of edge vectors.
+        return (b.x as i64 - a.x as i64) * (c.y as i64 - a.y as i64)
+            - (c.x as i64 - a.x as i64) * (b.y as i64 - a.y as i64);
+    }
+    let mut area = 0i64;
+    for k in 0..corners.len() {
+        let (u, v) = (p(k), p((k + 1) % corners.len()));
+        area += u.x as i64 * v.y as i64 - v.x as i64 * u.y as i64;
+    }
+    area
+}
+
+/// Whether the culling rule drops a polygon of this doubled signed area (the rule of
+/// [`crate::raster::outline`]: zero area always, clockwise when back faces are culled).
+#[inline]
+fn dropped(area: i64, cfg: &Config) -> bool {
+    area == 0 || (cfg.cull == Cull::Back && area > 0)
 }
 
 fn num<N: Scalar>(v: i32) -> N {
@@ -201,15 +375,64 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ScreenScene<'_, N, I> {
     fn polygons(
         &self,
         cfg: &Config,
-        f: &mut dyn FnMut(&RasterPolygon<N>) -> Result<(), Error>,
+        buf: &mut VertexBuffer<'_, N>,
+        f: &mut dyn FnMut(&Polygon<'_, N>) -> Result<(), Error>,
     ) -> Result<(), Error> {
-        self.mesh.check_normals()?;
-        for (no, face) in self.mesh.faces.iter().enumerate() {
+        let mesh = &self.mesh;
+        mesh.check_normals()?;
+        let s = cfg.subpixel_bits as u32;
+        let (lo, hx, hy): (N, N, N) = (
+            num(-GUARD_BAND),
+            num(cfg.width as i32 + GUARD_BAND),
+            num(cfg.height as i32 + GUARD_BAND),
+        );
+        // Every vertex snapped once; those outside the guard band (or not numbers) are left
+        // to the faces' clipping.
+        let base = buf.claim(mesh.vertices.len());
+        if let Some(b) = base {
+            for (slot, p) in buf.slots_from(b).iter_mut().zip(mesh.vertices) {
+                let inside = p.x >= lo && p.x <= hx && p.y >= lo && p.y <= hy;
+                *slot = match inside && p.z.is_finite() {
+                    true => snap(p, s, 0).unwrap_or_else(|_| unprojected()),
+                    false => unprojected(),
+                };
+            }
+        }
+        let mut corners = [0u32; MAX_POLYGON_VERTICES];
+        for (no, face) in mesh.faces.iter().enumerate() {
             let no = no as u32;
-            let mut poly = gather(&self.mesh, face, no)?;
+            let (n, projected) =
+                corners_of(face, mesh.vertices.len(), base, buf, &mut corners, no)?;
+            let out = Out {
+                color: face.color,
+                alpha: face.alpha,
+                face: no,
+            };
+            if projected {
+                emit_indexed(buf, &mut corners[..n], out, f)?;
+                continue;
+            }
+            let mut poly = gather(mesh, face, no)?;
+            if base.is_none()
+                && poly
+                    .iter()
+                    .all(|p| p.x >= lo && p.x <= hx && p.y >= lo && p.y <= hy)
+            {
+                // No room in the buffer, but nothing to clip either.
+                let mut v = [RasterVertex::default(); MAX_POLYGON_VERTICES];
+                for (d, p) in v.iter_mut().zip(&poly) {
+                    *d = snap(p, s, no)?;
+                }
+                emit_unclaimed(buf, &v[..n], out, f)?;
+                continue;
+            }
             clip_guard_band(&mut poly, cfg, no)?;
             if poly.len() >= 3 {
-                f(&snap_all(&poly, cfg, face.color, face.alpha, no)?)?;
+                let mut v = [RasterVertex::default(); MAX_POLYGON_VERTICES];
+                for (d, p) in v.iter_mut().zip(&poly) {
+                    *d = snap(p, s, no)?;
+                }
+                emit_new(buf, &v[..poly.len()], out, f)?;
             }
         }
         Ok(())
@@ -264,9 +487,6 @@ fn normal_matrix<N: Scalar>(mv: &Affine<N>) -> Option<Affine<N>> {
     Some(out)
 }
 
-/// Picks one coordinate of a clip-space vertex.
-type Coord<N> = fn(&ClipV<N>) -> N;
-
 /// A clip-space vertex: `x`, `y` scaled by the projection, `w` the distance in front of the eye.
 #[derive(Clone, Copy)]
 struct ClipV<N> {
@@ -275,16 +495,36 @@ struct ClipV<N> {
     w: N,
 }
 
-impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
-    fn polygons(
-        &self,
-        cfg: &Config,
-        f: &mut dyn FnMut(&RasterPolygon<N>) -> Result<(), Error>,
-    ) -> Result<(), Error> {
+/// One guard-band plane, `coord(v) − g·d(v)` crossing 0: which coordinate, and `g` (the side
+/// is its sign).
+type GuardPlane<N> = (fn(&ClipV<N>) -> N, N);
+
+/// Everything model mode needs to take a view-space point to snapped sub-pixels.
+struct Projector<N> {
+    perspective: bool,
+    /// Focal lengths (perspective) or reciprocal half sizes (orthographic), x and y.
+    sx: N,
+    sy: N,
+    near: N,
+    far: N,
+    guard: [GuardPlane<N>; 4],
+    /// Half the viewport, in sub-pixels: the projection's centre and scale.
+    kx: i32,
+    ky: i32,
+    /// `DEPTH_RANGE · far / (far − near)` and it times `near` (depth affine in 1/w).
+    depth_k: N,
+    k_near: N,
+    /// `DEPTH_RANGE / (far − near)` (depth linear in w).
+    depth_lin: N,
+    linear_w: bool,
+}
+
+impl<N: Scalar> Projector<N> {
+    fn new<I>(scene: &ModelScene<'_, N, I>, cfg: &Config) -> Result<Self, Error> {
         let (w_px, h_px) = (cfg.width as f32, cfg.height as f32);
-        let (perspective, sx, sy, near, far) = match self.camera.projection {
+        let aspect = N::from_f32(h_px / w_px).unwrap_or(N::ONE);
+        let (perspective, sx, sy, near, far) = match scene.camera.projection {
             Projection::Perspective { focal, near, far } => {
-                let aspect = N::from_f32(h_px / w_px).unwrap_or(N::ONE);
                 (true, focal.mul(aspect), focal, near, far)
             }
             Projection::Orthographic {
@@ -293,7 +533,6 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
                 far,
             } => {
                 let inv = N::ONE.div(half_height).ok_or(Error::BadConfig)?;
-                let aspect = N::from_f32(h_px / w_px).unwrap_or(N::ONE);
                 (false, inv.mul(aspect), inv, near, far)
             }
         };
@@ -303,143 +542,248 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
         // Guard band in normalised units: |x/w| <= gx keeps x within GUARD_BAND pixels.
         let gx = N::from_f32(1.0 + 2.0 * GUARD_BAND as f32 / w_px).ok_or(Error::BadConfig)?;
         let gy = N::from_f32(1.0 + 2.0 * GUARD_BAND as f32 / h_px).ok_or(Error::BadConfig)?;
-        let (cx, cy): (N, N) = (
-            N::from_f32(w_px * 0.5).ok_or(Error::BadConfig)?,
-            N::from_f32(h_px * 0.5).ok_or(Error::BadConfig)?,
-        );
         let range = N::from_f32(DEPTH_RANGE).ok_or(Error::BadConfig)?;
         let depth_k = range.mul(far.div(far.sub(near)).ok_or(Error::BadConfig)?);
-        let depth_lin = range.div(far.sub(near)).ok_or(Error::BadConfig)?;
-        let k_near = depth_k.mul(near);
+        let s = cfg.subpixel_bits as u32;
+        Ok(Projector {
+            perspective,
+            sx,
+            sy,
+            near,
+            far,
+            guard: [
+                (|v| v.x, gx),
+                (|v| v.x, gx.neg()),
+                (|v| v.y, gy),
+                (|v| v.y, gy.neg()),
+            ],
+            kx: (cfg.width as i32) << (s - 1),
+            ky: (cfg.height as i32) << (s - 1),
+            depth_k,
+            k_near: depth_k.mul(near),
+            depth_lin: range.div(far.sub(near)).ok_or(Error::BadConfig)?,
+            linear_w: perspective && cfg.depth == DepthMapping::LinearW,
+        })
+    }
+
+    /// A view-space point in clip space.
+    #[inline]
+    fn clip(&self, v: Vec3<N>) -> ClipV<N> {
+        ClipV {
+            x: v.x.mul(self.sx),
+            y: v.y.mul(self.sy),
+            w: v.z.neg(),
+        }
+    }
+
+    /// What x and y are divided by: w under perspective.
+    #[inline]
+    fn d(&self, v: &ClipV<N>) -> N {
+        if self.perspective {
+            v.w
+        } else {
+            N::ONE
+        }
+    }
+
+    /// Guard plane `i`'s signed distance: `coord(v) − g·d(v)`.
+    #[inline]
+    fn guard_c(&self, i: usize, v: &ClipV<N>) -> N {
+        let (coord, g) = self.guard[i];
+        coord(v).sub(g.mul(self.d(v)))
+    }
+
+    /// Whether `v` is inside guard plane `i` (its side: `c ≤ 0` for a positive `g`).
+    #[inline]
+    fn inside_guard(&self, i: usize, v: &ClipV<N>) -> bool {
+        let c = self.guard_c(i, v);
+        if self.guard[i].1 > N::ZERO {
+            c <= N::ZERO
+        } else {
+            c >= N::ZERO
+        }
+    }
+
+    /// Whether clipping would leave `v` where it is: inside the near and far planes and the
+    /// guard band (the same tests the clipping path makes).
+    #[inline]
+    fn inside(&self, v: &ClipV<N>) -> bool {
+        v.w >= self.near && v.w <= self.far && (0..4).all(|i| self.inside_guard(i, v))
+    }
+
+    /// Clips a polygon in clip space: near, far, then the four guard-band planes.
+    fn clip_polygon(&self, clip: &mut Poly<ClipV<N>>, face: u32) -> Result<(), Error> {
+        let lerp = |i: &ClipV<N>, o: &ClipV<N>, ci: N, co: N, b: N| ClipV {
+            x: N::lerp_clip(i.x, o.x, ci, co, b),
+            y: N::lerp_clip(i.y, o.y, ci, co, b),
+            w: N::lerp_clip(i.w, o.w, ci, co, b),
+        };
+        let (near, far) = (self.near, self.far);
+        clip_plane(
+            clip,
+            |v| v.w >= near,
+            |i, o| lerp(i, o, i.w, o.w, near),
+            face,
+        )?;
+        clip_plane(clip, |v| v.w <= far, |i, o| lerp(i, o, i.w, o.w, far), face)?;
+        for g in 0..4 {
+            clip_plane(
+                clip,
+                |v| self.inside_guard(g, v),
+                |i, o| lerp(i, o, self.guard_c(g, i), self.guard_c(g, o), N::ZERO),
+                face,
+            )?;
+        }
+        Ok(())
+    }
+
+    /// A clip-space point inside the view volume and the guard band, projected and snapped:
+    /// `x = kx + round(kx · x / d)`, `y = ky − round(ky · y / d)`, and its depth.
+    #[inline]
+    fn screen(&self, v: &ClipV<N>) -> Option<RasterVertex<N>> {
+        let d = self.d(v);
+        let x = self.kx.checked_add(v.x.ratio(self.kx, d)?)?;
+        let y = self.ky.checked_sub(v.y.ratio(self.ky, d)?)?;
+        let z = if self.perspective && !self.linear_w {
+            self.depth_k.sub(self.k_near.div(v.w)?)
+        } else {
+            v.w.sub(self.near).mul(self.depth_lin)
+        };
+        Some(RasterVertex { x, y, z })
+    }
+}
+
+/// Flat Lambert shading of one object's faces: the light in view space, the matrix that takes
+/// model-space normals there, the ambient fraction.
+struct Lighting<N> {
+    light: Option<Vec3<N>>,
+    to_view: Option<Affine<N>>,
+    ambient: N,
+    math: crate::math::MathLib,
+}
+
+impl<N: Scalar> Lighting<N> {
+    /// The colour of a face with model-space normal `normal` (any length; `None`: unlit).
+    fn color(&self, base: Rgb565, normal: Option<[N; 3]>) -> Rgb565 {
+        let lambert = match (self.light, self.to_view, normal) {
+            (Some(l), Some(m), Some([x, y, z])) => {
+                let n = m.apply_dir(Vec3::new(x, y, z));
+                let d = n.dot(l);
+                if d > N::ZERO {
+                    d.div(self.math.sqrt(n.dot(n))).unwrap_or(N::ZERO)
+                } else {
+                    N::ZERO
+                }
+            }
+            _ => N::ZERO,
+        };
+        let a = self.ambient;
+        shade(base, a.add(N::ONE.sub(a).mul(lambert)))
+    }
+}
+
+impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
+    fn polygons(
+        &self,
+        cfg: &Config,
+        buf: &mut VertexBuffer<'_, N>,
+        f: &mut dyn FnMut(&Polygon<'_, N>) -> Result<(), Error>,
+    ) -> Result<(), Error> {
+        let proj = Projector::new(self, cfg)?;
         let light = self.camera.view.apply_dir(self.light.direction).unit_max();
-        let linear_w = perspective && cfg.depth == DepthMapping::LinearW;
         let light = light.and_then(|l| {
             let len = cfg.math.sqrt(l.dot(l));
             Some(Vec3::new(l.x.div(len)?, l.y.div(len)?, l.z.div(len)?))
         });
-        let minus_one = N::ONE.neg();
         for obj in self.objects {
             obj.mesh.check_normals()?;
         }
         let mut no = 0u32;
+        let mut corners = [0u32; MAX_POLYGON_VERTICES];
         for obj in self.objects {
             let mv = self.camera.view.then_after(&obj.transform);
-            let to_view = if obj.mesh.normals.is_empty() {
-                None // not needed: every normal comes from the cross product
-            } else {
-                normal_matrix(&mv)
+            let lighting = Lighting {
+                light,
+                to_view: normal_matrix(&mv),
+                ambient: self.light.ambient,
+                math: cfg.math,
             };
-            for (k, face) in obj.mesh.faces.iter().enumerate() {
+            let mesh = obj.mesh;
+            // Every vertex once: transformed, and, inside the view volume and the guard band,
+            // projected and snapped.
+            let base = buf.claim(mesh.vertices.len());
+            if let Some(b) = base {
+                for (slot, v) in buf.slots_from(b).iter_mut().zip(mesh.vertices) {
+                    let c = mv.apply_checked(*v).map(|v| proj.clip(v));
+                    *slot = c
+                        .filter(|c| proj.inside(c))
+                        .and_then(|c| proj.screen(&c))
+                        .unwrap_or_else(unprojected);
+                }
+            }
+            let normal = |k: usize, face: &Face<'_, I>| -> Option<[N; 3]> {
+                if let Some(n) = mesh.normals.get(k) {
+                    return Some([n.x, n.y, n.z]);
+                }
+                let v = |j: usize| {
+                    let p = mesh.vertices[face.indices[j].index()];
+                    [p.x, p.y, p.z]
+                };
+                N::face_normal(v(0), v(1), v(2))
+            };
+            for (k, face) in mesh.faces.iter().enumerate() {
                 let this = no;
                 no += 1;
-                let mut poly = gather(obj.mesh, face, this)?;
-                for v in poly.iter_mut() {
-                    *v = mv.apply(*v);
-                }
-                let normal = match obj.mesh.normals.get(k) {
-                    // Checked above: `normals` is empty or has one entry per face.
-                    Some(&n) => to_view.and_then(|m| m.apply_dir(n).unit_max()),
-                    None => poly[1]
-                        .minus(poly[0])
-                        .cross(poly[2].minus(poly[0]))
-                        .unit_max(),
-                };
-                let Some(normal) = normal else {
-                    continue; // degenerate face: zero area (or a zero normal)
-                };
-                if cfg.cull == Cull::Back {
-                    let view = if perspective {
-                        poly[0]
-                    } else {
-                        Vec3::new(N::ZERO, N::ZERO, minus_one)
-                    };
-                    if is_back_face(normal, view) {
+                let (n, projected) =
+                    corners_of(face, mesh.vertices.len(), base, buf, &mut corners, this)?;
+                if projected {
+                    if dropped(area_of(buf.as_slice(), &corners[..n]), cfg) {
                         continue;
                     }
-                }
-                let lambert = match light {
-                    Some(l) => {
-                        let d = normal.dot(l);
-                        let len = cfg.math.sqrt(normal.dot(normal));
-                        if d > N::ZERO {
-                            d.div(len).unwrap_or(N::ZERO)
-                        } else {
-                            N::ZERO
-                        }
-                    }
-                    None => N::ZERO,
-                };
-                let a = self.light.ambient;
-                let color = shade(face.color, a.add(N::ONE.sub(a).mul(lambert)));
-                let mut clip: Poly<ClipV<N>> = Vec::new();
-                for v in &poly {
-                    let _ = clip.push(ClipV {
-                        x: v.x.mul(sx),
-                        y: v.y.mul(sy),
-                        w: v.z.neg(),
-                    });
-                }
-                let lerp = |i: &ClipV<N>, o: &ClipV<N>, ci: N, co: N, b: N| ClipV {
-                    x: N::lerp_clip(i.x, o.x, ci, co, b),
-                    y: N::lerp_clip(i.y, o.y, ci, co, b),
-                    w: N::lerp_clip(i.w, o.w, ci, co, b),
-                };
-                let d = |v: &ClipV<N>| if perspective { v.w } else { N::ONE };
-                clip_plane(
-                    &mut clip,
-                    |v| v.w >= near,
-                    |i, o| lerp(i, o, i.w, o.w, near),
-                    this,
-                )?;
-                clip_plane(
-                    &mut clip,
-                    |v| v.w <= far,
-                    |i, o| lerp(i, o, i.w, o.w, far),
-                    this,
-                )?;
-                // Guard-band planes x = ±g·d, written as c = x ∓ g·d crossing 0.
-                let planes: [(Coord<N>, N); 4] = [
-                    (|v| v.x, gx),
-                    (|v| v.x, gx.neg()),
-                    (|v| v.y, gy),
-                    (|v| v.y, gy.neg()),
-                ];
-                for (coord, g) in planes {
-                    let c = |v: &ClipV<N>| coord(v).sub(g.mul(d(v)));
-                    let inside = |v: &ClipV<N>| {
-                        if g > N::ZERO {
-                            c(v) <= N::ZERO
-                        } else {
-                            c(v) >= N::ZERO
-                        }
+                    let out = Out {
+                        color: lighting.color(face.color, normal(k, face)),
+                        alpha: face.alpha,
+                        face: this,
                     };
-                    clip_plane(
-                        &mut clip,
-                        inside,
-                        |i, o| lerp(i, o, c(i), c(o), N::ZERO),
-                        this,
-                    )?;
+                    emit_indexed(buf, &mut corners[..n], out, f)?;
+                    continue;
+                }
+                // The face's corners again: clipped in clip space if they need it (or, with
+                // no room in the buffer, projected here if they do not).
+                let mut clip: Poly<ClipV<N>> = Vec::new();
+                for &i in face.indices {
+                    let p = mesh.vertices[i.index()];
+                    let v = mv
+                        .apply_checked(p)
+                        .filter(|v| v.x.is_finite() && v.y.is_finite() && v.z.is_finite())
+                        .ok_or(Error::NonFinite { face: this })?;
+                    let _ = clip.push(proj.clip(v)); // fits: checked against MAX_FACE_VERTICES
+                }
+                let unclipped = clip.iter().all(|c| proj.inside(c));
+                if !unclipped {
+                    proj.clip_polygon(&mut clip, this)?;
                 }
                 if clip.len() < 3 {
                     continue;
                 }
-                let mut screen: Poly<Vec3<N>> = Vec::new();
-                for v in &clip {
-                    let (nx, ny, z) = if perspective {
-                        let nx = v.x.div(v.w).ok_or(Error::NonFinite { face: this })?;
-                        let ny = v.y.div(v.w).ok_or(Error::NonFinite { face: this })?;
-                        let z = if linear_w {
-                            v.w.sub(near).mul(depth_lin)
-                        } else {
-                            depth_k.sub(k_near.div(v.w).ok_or(Error::NonFinite { face: this })?)
-                        };
-                        (nx, ny, z)
-                    } else {
-                        (v.x, v.y, v.w.sub(near).mul(depth_lin))
-                    };
-                    let _ = screen.push(Vec3::new(cx.add(nx.mul(cx)), cy.sub(ny.mul(cy)), z));
+                let mut v = [RasterVertex::default(); MAX_POLYGON_VERTICES];
+                for (d, c) in v.iter_mut().zip(&clip) {
+                    *d = proj.screen(c).ok_or(Error::NonFinite { face: this })?;
                 }
-                f(&snap_all(&screen, cfg, color, face.alpha, this)?)?;
+                let v = &v[..clip.len()];
+                if dropped(signed_area2(v), cfg) {
+                    continue;
+                }
+                let out = Out {
+                    color: lighting.color(face.color, normal(k, face)),
+                    alpha: face.alpha,
+                    face: this,
+                };
+                if unclipped {
+                    emit_unclaimed(buf, v, out, f)?;
+                } else {
+                    emit_new(buf, v, out, f)?;
+                }
             }
         }
         Ok(())

@@ -165,33 +165,59 @@ impl<N: Scalar> Affine<N> {
             [-cp * sy, sp, cp * cy, t[2]],
         ])
     }
-    /// Applies to a point.
+    /// Applies to a point. Each coordinate is summed exactly and rounded once
+    /// ([`Scalar::affine_row`]: within half a unit of the last place in fixed point, however
+    /// large the partial sums); a coordinate beyond the format saturates, with the exact
+    /// result's sign. [`Affine::apply_checked`] says so instead.
     pub fn apply(&self, p: Vec3<N>) -> Vec3<N> {
         let row = |r: &[N; 4]| {
-            r[0].mul(p.x)
-                .add(r[1].mul(p.y))
-                .add(r[2].mul(p.z))
-                .add(r[3])
+            N::affine_row(r, [p.x, p.y, p.z]).unwrap_or_else(|| saturated(r, [p.x, p.y, p.z]))
         };
         Vec3::new(row(&self.m[0]), row(&self.m[1]), row(&self.m[2]))
+    }
+    /// [`Affine::apply`], or `None` if a coordinate of the result does not fit the format (or,
+    /// in f32, is not finite).
+    pub fn apply_checked(&self, p: Vec3<N>) -> Option<Vec3<N>> {
+        let row = |r: &[N; 4]| N::affine_row(r, [p.x, p.y, p.z]);
+        Some(Vec3::new(
+            row(&self.m[0])?,
+            row(&self.m[1])?,
+            row(&self.m[2])?,
+        ))
     }
     /// Applies the linear part only (to a direction).
     pub fn apply_dir(&self, p: Vec3<N>) -> Vec3<N> {
         let row = |r: &[N; 4]| r[0].mul(p.x).add(r[1].mul(p.y)).add(r[2].mul(p.z));
         Vec3::new(row(&self.m[0]), row(&self.m[1]), row(&self.m[2]))
     }
-    /// `self ∘ o`: applies `o` first.
+    /// `self ∘ o`: applies `o` first. Each entry is summed exactly and rounded once, like
+    /// [`Affine::apply`].
     pub fn then_after(&self, o: &Self) -> Self {
         let mut out = Self::identity();
         for r in 0..3 {
             for c in 0..4 {
-                let mut acc = if c == 3 { self.m[r][3] } else { N::ZERO };
-                for k in 0..3 {
-                    acc = acc.add(self.m[r][k].mul(o.m[k][c]));
-                }
-                out.m[r][c] = acc;
+                let t = if c == 3 { self.m[r][3] } else { N::ZERO };
+                let row = [self.m[r][0], self.m[r][1], self.m[r][2], t];
+                let col = [o.m[0][c], o.m[1][c], o.m[2][c]];
+                out.m[r][c] = N::affine_row(&row, col).unwrap_or_else(|| saturated(&row, col));
             }
         }
         out
+    }
+}
+
+/// The format's end with the sign of the exact `row · (p, 1)`, for a result beyond the format
+/// (`NaN` input gives zero).
+fn saturated<N: Scalar>(row: &[N; 4], p: [N; 3]) -> N {
+    let v = row[0].to_f64() * p[0].to_f64()
+        + row[1].to_f64() * p[1].to_f64()
+        + row[2].to_f64() * p[2].to_f64()
+        + row[3].to_f64();
+    if v > 0.0 {
+        N::MAX
+    } else if v < 0.0 {
+        N::MAX.neg()
+    } else {
+        N::ZERO
     }
 }

@@ -25,6 +25,8 @@
 
 use crate::raster::RasterVertex;
 
+mod div;
+
 /// Signed fixed point with 16 integer and 16 fractional bits (range ±32768, LSB 2^-16).
 #[allow(non_camel_case_types)]
 pub type Q16_16 = fixed::types::I16F16;
@@ -99,10 +101,28 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     fn add(self, o: Self) -> Self;
     /// Saturating subtraction.
     fn sub(self, o: Self) -> Self;
-    /// Saturating multiplication.
+    /// Multiplication, rounded to nearest (fixed point: within half a unit of the last place;
+    /// ties round up) and saturating.
     fn mul(self, o: Self) -> Self;
-    /// Division; `None` when dividing by zero or when the quotient is out of range.
+    /// Division, rounded to nearest (fixed point: ties away from zero); `None` when dividing by
+    /// zero or when the quotient is out of range.
     fn div(self, o: Self) -> Option<Self>;
+    /// `round(self · k / d)` as an integer: a ratio of two values of the format scaled by an
+    /// integer, exact and rounded once (ties away from zero; f32: in f32, then to nearest).
+    /// Projection uses it to go from clip space straight to sub-pixels. `None` if `d ≤ 0`, the
+    /// result does not fit an `i32`, or an input is not finite.
+    fn ratio(self, k: i32, d: Self) -> Option<i32>;
+    /// `row[0]·p[0] + row[1]·p[1] + row[2]·p[2] + row[3]`: one row of an affine transform.
+    /// Fixed point: the products are summed exactly (64-bit and wider) and rounded once, to
+    /// nearest, so the result is within half a unit of the last place whatever the partial
+    /// sums do. `None` if the result does not fit the format (or, in f32, is not finite).
+    fn affine_row(row: &[Self; 4], p: [Self; 3]) -> Option<Self>;
+    /// The direction of the face normal `(b − a) × (c − a)`, scaled by a power of two (f32: by
+    /// the reciprocal of its largest component) so that its largest component lies in
+    /// [1/2, 1]: a direction with the format's full precision, for lighting, without a
+    /// division per component. Fixed point: the cross product is exact (64-bit integers).
+    /// `None` for a zero normal.
+    fn face_normal(a: [Self; 3], b: [Self; 3], c: [Self; 3]) -> Option<[Self; 3]>;
     /// Saturating negation.
     fn neg(self) -> Self {
         Self::ZERO.sub(self)
@@ -162,17 +182,13 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
 
 /// Rounds `n / d` to nearest, ties away from zero. `d > 0`.
 ///
-/// Divides in 64 bits when both fit (the common case): on a 32-bit core a 128-bit division
-/// is a much longer library call. Same result either way.
+/// Divides in 64 bits when both fit (the common case; two hardware divisions when `d` fits 32
+/// bits, see `div`): on a 32-bit core a 128-bit division is a much longer library call. Same
+/// result either way.
 fn div_round(n: i128, d: i128) -> i128 {
     if let (Ok(n), Ok(d)) = (i64::try_from(n), i64::try_from(d)) {
         if n > i64::MIN / 2 && n < i64::MAX / 2 {
-            let q = if n >= 0 {
-                (n + d / 2) / d
-            } else {
-                -((-n + d / 2) / d)
-            };
-            return q as i128;
+            return div::div_round(n, d) as i128;
         }
     }
     if n >= 0 {
@@ -184,6 +200,86 @@ fn div_round(n: i128, d: i128) -> i128 {
 
 fn sat_i32(v: i128) -> i32 {
     v.clamp(i32::MIN as i128, i32::MAX as i128) as i32
+}
+
+#[inline]
+fn sat_i64(v: i64) -> i32 {
+    v.clamp(i32::MIN as i64, i32::MAX as i64) as i32
+}
+
+/// The fixed-point depth plane of [`Scalar::depth_plane`] in 64-bit integers: `Some(None)` for
+/// zero area, `Some(Some((z_ref, dzdx, dzdy)))` as raw bits, or `None` when an intermediate does
+/// not fit 64 bits (then the 128-bit computation, which gives the same bits, is used). Every
+/// polygon of an ordinary screen fits; the divisions are two hardware ones each when the
+/// polygon's doubled area in sub-pixels fits 32 bits.
+#[allow(clippy::type_complexity)]
+fn plane_i64<N: Copy>(
+    v: &[RasterVertex<N>],
+    s: u32,
+    bits: impl Fn(N) -> i32,
+) -> Option<Option<(i32, i32, i32)>> {
+    let (mut a, mut b, mut c) = (0i64, 0i64, 0i64);
+    for (k, p) in v.iter().enumerate() {
+        let q = &v[(k + 1) % v.len()];
+        let (x0, y0, z0) = (p.x as i64, p.y as i64, bits(p.z) as i64);
+        let (x1, y1, z1) = (q.x as i64, q.y as i64, bits(q.z) as i64);
+        a = a.checked_add((y0 - y1).checked_mul(z0 + z1)?)?;
+        b = b.checked_add((z0 - z1).checked_mul(x0 + x1)?)?;
+        c = c.checked_add((x0 - x1).checked_mul(y0 + y1)?)?;
+    }
+    if c == 0 {
+        return Some(None);
+    }
+    let (a, b, c) = if c < 0 { (-a, -b, -c) } else { (a, b, c) };
+    let (x0, y0, z0) = (v[0].x as i64, v[0].y as i64, bits(v[0].z) as i64);
+    let half = 1i64 << s >> 1;
+    let num = a
+        .checked_mul(half - x0)?
+        .checked_add(b.checked_mul(half - y0)?)?
+        .checked_neg()?;
+    let (ax, by) = (a.checked_mul(1 << s)?, b.checked_mul(1 << s)?);
+    // Halved bounds keep div_round's rounding step from overflowing.
+    let fits = |v: i64| v > i64::MIN / 2 && v < i64::MAX / 2;
+    if !(fits(num) && fits(ax) && fits(by)) {
+        return None;
+    }
+    let z_ref = z0.wrapping_add(div::div_round(num, c));
+    let sat = |v: i64| v.clamp(i32::MIN as i64, i32::MAX as i64) as i32;
+    Some(Some((
+        z_ref as i32, // wraps: exact modulo 2^32, like every later step
+        sat(div::div_round(-ax, c)),
+        sat(div::div_round(-by, c)),
+    )))
+}
+
+/// The fixed-point depth plane of [`Scalar::depth_plane`] in 128-bit integers (any input):
+/// `(z_ref, dzdx, dzdy)` as raw bits, or `None` for zero area.
+fn plane_i128<N: Copy>(
+    v: &[RasterVertex<N>],
+    s: u32,
+    bits: impl Fn(N) -> i32,
+) -> Option<(i32, i32, i32)> {
+    let mut pts = [(0i128, 0i128, 0i128); crate::raster::MAX_POLYGON_VERTICES];
+    let n = v.len().min(pts.len());
+    for (p, q) in pts.iter_mut().zip(v) {
+        *p = (q.x as i128, q.y as i128, bits(q.z) as i128);
+    }
+    let (a, b, c) = newell(&pts[..n]);
+    if c == 0 {
+        return None;
+    }
+    // Normalise so the denominator is positive: the plane is the same.
+    let (a, b, c) = if c < 0 { (-a, -b, -c) } else { (a, b, c) };
+    let (x0, y0, z0) = pts[0];
+    // Pixel (0, 0)'s centre: z − z0 = −(A·(x − x0) + B·(y − y0)) / C, x and y in sub-pixels,
+    // z in raw bits (the format's LSB).
+    let half = 1i128 << s >> 1;
+    let z_ref = z0 + div_round(-(a * (half - x0) + b * (half - y0)), c);
+    Some((
+        z_ref as i32, // wraps: exact modulo 2^32, like every later step
+        sat_i32(div_round(-(a << s), c)),
+        sat_i32(div_round(-(b << s), c)),
+    ))
 }
 
 /// Newell's normal of a polygon in (sub-pixel, sub-pixel, depth) units, as exact integers.
@@ -227,11 +323,86 @@ macro_rules! impl_fixed {
             fn sub(self, o: Self) -> Self {
                 self.saturating_sub(o)
             }
+            #[inline]
             fn mul(self, o: Self) -> Self {
-                self.saturating_mul(o)
+                let f = $t::FRAC_NBITS;
+                let p = self.to_bits() as i64 * o.to_bits() as i64;
+                $t::from_bits(sat_i64((p + (1 << (f - 1))) >> f))
             }
+            #[inline]
             fn div(self, o: Self) -> Option<Self> {
-                self.checked_div(o)
+                if o.to_bits() == 0 {
+                    return None;
+                }
+                let q = div::div_round(
+                    (self.to_bits() as i64) << $t::FRAC_NBITS,
+                    o.to_bits() as i64,
+                );
+                i32::try_from(q).ok().map($t::from_bits)
+            }
+            #[inline]
+            fn ratio(self, k: i32, d: Self) -> Option<i32> {
+                let d = d.to_bits();
+                if d <= 0 {
+                    return None;
+                }
+                i32::try_from(div::div_round(self.to_bits() as i64 * k as i64, d as i64)).ok()
+            }
+            #[inline]
+            fn affine_row(row: &[Self; 4], p: [Self; 3]) -> Option<Self> {
+                let f = $t::FRAC_NBITS;
+                let prod = |a: Self, b: Self| a.to_bits() as i64 * b.to_bits() as i64;
+                // Each product is below 2^62, so three of them and the translation fit 2^64
+                // only just: add in i64 with an overflow check, in i128 when it trips.
+                let t = (row[3].to_bits() as i64) << f;
+                let sum = prod(row[0], p[0])
+                    .checked_add(prod(row[1], p[1]))
+                    .and_then(|v| v.checked_add(prod(row[2], p[2])))
+                    .and_then(|v| v.checked_add(t));
+                let rounded = match sum {
+                    Some(v) => (v >> (f - 1)).checked_add(1)? >> 1,
+                    None => {
+                        let wide = prod(row[0], p[0]) as i128
+                            + prod(row[1], p[1]) as i128
+                            + prod(row[2], p[2]) as i128
+                            + t as i128;
+                        i64::try_from(((wide >> (f - 1)) + 1) >> 1).ok()?
+                    }
+                };
+                i32::try_from(rounded).ok().map($t::from_bits)
+            }
+            fn face_normal(a: [Self; 3], b: [Self; 3], c: [Self; 3]) -> Option<[Self; 3]> {
+                let e = |p: [Self; 3]| p.map(|v| v.to_bits() as i64);
+                let (a, b, c) = (e(a), e(b), e(c));
+                let mut e1 = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+                let mut e2 = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+                // Edges below 2^30 keep every product below 2^60 and the cross product exact.
+                let big = e1
+                    .iter()
+                    .chain(&e2)
+                    .map(|v| v.unsigned_abs())
+                    .max()
+                    .unwrap_or(0);
+                let pre = (64 - big.leading_zeros()).saturating_sub(30);
+                for v in e1.iter_mut().chain(e2.iter_mut()) {
+                    *v >>= pre;
+                }
+                let n = [
+                    e1[1] * e2[2] - e1[2] * e2[1],
+                    e1[2] * e2[0] - e1[0] * e2[2],
+                    e1[0] * e2[1] - e1[1] * e2[0],
+                ];
+                let m = n.iter().map(|v| v.unsigned_abs()).max().unwrap_or(0);
+                if m == 0 {
+                    return None;
+                }
+                // Largest component to [2^(F−1), 2^F): a shift either way.
+                let bits = 64 - m.leading_zeros() as i32;
+                let shift = bits - $t::FRAC_NBITS as i32;
+                Some(n.map(|v| {
+                    let v = if shift >= 0 { v >> shift } else { v << -shift };
+                    $t::from_bits(v as i32)
+                }))
             }
             fn sqrt(self) -> Self {
                 if self <= Self::ZERO {
@@ -286,36 +457,21 @@ macro_rules! impl_fixed {
                 v: &[RasterVertex<Self>],
                 subpixel_bits: u32,
             ) -> Option<DepthPlane<Self>> {
-                let mut pts = [(0i128, 0i128, 0i128); crate::raster::MAX_POLYGON_VERTICES];
-                let n = v.len().min(pts.len());
+                let n = v.len().min(crate::raster::MAX_POLYGON_VERTICES);
                 if n < 3 {
                     return None;
                 }
-                for (p, q) in pts.iter_mut().zip(v) {
-                    *p = (q.x as i128, q.y as i128, q.z.to_bits() as i128);
-                }
-                let (a, b, c) = newell(&pts[..n]);
-                if c == 0 {
-                    return None;
-                }
-                // Normalise so the denominator is positive: the plane is the same.
-                let (a, b, c) = if c < 0 { (-a, -b, -c) } else { (a, b, c) };
-                let s = subpixel_bits;
-                let (x0, y0, z0) = pts[0];
-                // Pixel (0, 0)'s centre: z − z0 = −(A·(x − x0) + B·(y − y0)) / C, x and y
-                // in sub-pixels, z in raw bits (the format's LSB).
-                let half = 1i128 << s >> 1;
-                let z_ref = z0 + div_round(-(a * (half - x0) + b * (half - y0)), c);
-                let dzdx = div_round(-(a << s), c);
-                let dzdy = div_round(-(b << s), c);
-                let (i_ref, j_ref) = (0, 0);
+                let bits = |z: Self| z.to_bits();
+                let (z_ref, dzdx, dzdy) = match plane_i64(&v[..n], subpixel_bits, bits) {
+                    Some(plane) => plane?,
+                    None => plane_i128(&v[..n], subpixel_bits, bits)?,
+                };
                 Some(DepthPlane {
-                    // Wraps: exact modulo 2^32, like every later step.
-                    z_ref: $t::from_bits(z_ref as i32),
-                    dzdx: $t::from_bits(sat_i32(dzdx)),
-                    dzdy: $t::from_bits(sat_i32(dzdy)),
-                    i_ref,
-                    j_ref,
+                    z_ref: $t::from_bits(z_ref),
+                    dzdx: $t::from_bits(dzdx),
+                    dzdy: $t::from_bits(dzdy),
+                    i_ref: 0,
+                    j_ref: 0,
                 })
             }
         }
@@ -365,6 +521,40 @@ impl Scalar for f32 {
     fn div(self, o: Self) -> Option<Self> {
         let q = self / o;
         q.is_finite().then_some(q)
+    }
+    fn ratio(self, k: i32, d: Self) -> Option<i32> {
+        if d.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) {
+            return None; // also NaN
+        }
+        let t = self * k as f32 / d;
+        if !(-2.0e9..=2.0e9).contains(&t) {
+            return None; // also NaN
+        }
+        // Above 2^23 every f32 is an integer; below it t + 0.5 is exact or rounds monotonely.
+        Some(if t.abs() >= 8_388_608.0 {
+            t as i32
+        } else {
+            floor_f32(t + 0.5) as i32
+        })
+    }
+    fn affine_row(row: &[Self; 4], p: [Self; 3]) -> Option<Self> {
+        let v = row[0] * p[0] + row[1] * p[1] + row[2] * p[2] + row[3];
+        v.is_finite().then_some(v)
+    }
+    fn face_normal(a: [Self; 3], b: [Self; 3], c: [Self; 3]) -> Option<[Self; 3]> {
+        let e1 = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+        let e2 = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+        let n = [
+            e1[1] * e2[2] - e1[2] * e2[1],
+            e1[2] * e2[0] - e1[0] * e2[2],
+            e1[0] * e2[1] - e1[1] * e2[0],
+        ];
+        let m = n[0].abs().max(n[1].abs()).max(n[2].abs());
+        if m.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) || !m.is_finite() {
+            return None;
+        }
+        let inv = 1.0 / m;
+        Some(n.map(|v| v * inv))
     }
     fn sqrt(self) -> Self {
         if self.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) || !self.is_finite() {
@@ -607,6 +797,47 @@ mod tests {
     }
 
     fixed_tests!(q16_16, Q16_16, 16, "q16.16");
+
+    #[test]
+    fn plane_in_64_bits_equals_the_128_bit_one() {
+        let mut seed = 0x853c_49e6_748f_ea9bu64;
+        let mut next = |m: i64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % (2 * m as u64 + 1)) as i64 - m
+        };
+        let (mut fast, mut planes) = (0, 0);
+        for k in 0..50_000 {
+            // Small polygons near the screen, large ones across the guard band, and extreme
+            // coordinates that push the 64-bit path out.
+            let (reach, z) = match k % 3 {
+                0 => (1 << 12, 1 << 20),
+                1 => (1 << 17, 1 << 24),
+                _ => (1 << 30, 1 << 31),
+            };
+            let (cx, cy) = (next(1 << 21), next(1 << 21));
+            let n = 3 + (next(2).unsigned_abs() as usize);
+            let mut v = [RasterVertex::<i32>::default(); 5];
+            let c = |v: i64| v.clamp(i32::MIN as i64, i32::MAX as i64) as i32;
+            for p in &mut v[..n] {
+                *p = RasterVertex {
+                    x: c(cx + next(reach)),
+                    y: c(cy + next(reach)),
+                    z: c(next(z)),
+                };
+            }
+            let v = &v[..n];
+            let s = 1 + (next(3) + 3) as u32 % 8;
+            let wide = plane_i128(v, s, |z| z);
+            if let Some(p) = plane_i64(v, s, |z| z) {
+                assert_eq!(p, wide, "{v:?} s {s}");
+                fast += 1;
+            }
+            planes += wide.is_some() as u32;
+        }
+        assert!(fast > 30_000 && planes > 40_000, "{fast} fast of {planes}");
+    }
     fixed_tests!(q24_8, Q24_8, 8, "q24.8");
 
     #[test]

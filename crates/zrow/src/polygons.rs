@@ -21,7 +21,7 @@
 use crate::error::{Error, Table};
 use crate::number::{DepthPlane, Scalar};
 use crate::raster::{setup, signed_area2, Config, Cull, Edge, Side};
-use crate::scene::Scene;
+use crate::scene::{Scene, VertexBuffer};
 use crate::sink::{Row, RowSink};
 use embedded_graphics_core::pixelcolor::Rgb565;
 use heapless::Vec;
@@ -97,7 +97,9 @@ impl<N: Scalar, const P: usize, const E: usize> PolygonTable<N, P, E> {
         let (s, h) = (cfg.subpixel_bits as u32, cfg.half());
         let (mut polys, mut edges) = (0u32, 0u32);
         let (table, edge_table) = (&mut self.polys, &mut self.edges);
-        scene.polygons(&setup_cfg, &mut |poly| {
+        let mut buf = VertexBuffer::new(&mut []);
+        scene.polygons(&setup_cfg, &mut buf, &mut |poly| {
+            let poly = &poly.to_raster();
             let Some(sp) = setup(poly, &setup_cfg)? else {
                 return Ok(());
             };

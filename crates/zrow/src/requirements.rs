@@ -6,7 +6,7 @@
 use crate::error::Error;
 use crate::number::Scalar;
 use crate::raster::{setup, Config};
-use crate::scene::Scene;
+use crate::scene::{Scene, VertexBuffer};
 
 /// The capacities a scene needs under one configuration.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -16,8 +16,9 @@ pub struct Requirements {
     pub polygons: u32,
     /// Edges that cross a sample row on screen (edge table).
     pub edges: u32,
-    /// Vertex slots (the scan-line's vertex pool: the vertices of those polygons after
-    /// clipping, summed).
+    /// Vertex slots of the frame's vertex buffer (the scan-line method's vertex capacity): one
+    /// per vertex of every object's mesh, plus the vertices clipping makes and the runs of
+    /// polygons with more than [`crate::scene::INDEXED_CORNERS`] corners.
     pub vertices: u32,
     /// Most polygons crossing one row (active list).
     pub active_polygons: u32,
@@ -68,17 +69,19 @@ pub fn requirements<N: Scalar>(
         width: cfg.width,
         ..Requirements::default()
     };
-    scene.polygons(cfg, &mut |poly| {
-        if let Some(sp) = setup(poly, cfg)? {
+    let mut buf = VertexBuffer::new(&mut []);
+    scene.polygons(cfg, &mut buf, &mut |poly| {
+        if let Some(sp) = setup(&poly.to_raster(), cfg)? {
             req.polygons += 1;
             req.edges += sp.edges.len() as u32;
-            req.vertices += poly.vertices.len() as u32;
             let (a, b) = (sp.first_row as usize, sp.last_row as usize + 1);
             rows[a] = rows[a].wrapping_add(1);
             rows[b] = rows[b].wrapping_sub(1);
         }
         Ok(())
     })?;
+    // What a vertex buffer with room would have held (geometry counts it without one).
+    req.vertices = buf.needed() as u32;
     let mut running = 0u32;
     for r in rows.iter() {
         running = running.wrapping_add(*r);

@@ -47,7 +47,7 @@ use crate::raster::{
     canonical, edge_between, outline, Config, Dda, RasterVertex, Side, MAX_POLYGON_VERTICES,
 };
 use crate::requirements::Requirements;
-use crate::scene::Scene;
+use crate::scene::{Scene, VertexBuffer, INDEXED_CORNERS};
 use crate::shading::{Cue, Interpolation};
 use crate::sink::{Row, RowSink};
 use embedded_graphics_core::pixelcolor::raw::{RawData, RawU16};
@@ -55,18 +55,97 @@ use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use heapless::binary_heap::{BinaryHeap, Min};
 use heapless::Vec;
 
-/// One polygon of the table: where its vertices are, its colour and its rows.
+/// The integer type of a slot number in the vertex buffer: `u16` (the default, up to 65,536
+/// slots: two bytes a corner) or `u32` (host-sized scenes). Sealed.
+pub trait Slot: Copy + core::fmt::Debug + 'static + sealed::Sealed {
+    /// The largest vertex capacity the type can address.
+    const MAX_SLOTS: usize;
+    /// From a slot number below [`Slot::MAX_SLOTS`].
+    fn from_slot(v: u32) -> Self;
+    /// The slot number.
+    fn slot(self) -> usize;
+}
+
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for u16 {}
+    impl Sealed for u32 {}
+}
+
+impl Slot for u16 {
+    const MAX_SLOTS: usize = 1 << 16;
+    #[inline]
+    fn from_slot(v: u32) -> Self {
+        v as u16
+    }
+    #[inline]
+    fn slot(self) -> usize {
+        self as usize
+    }
+}
+
+impl Slot for u32 {
+    const MAX_SLOTS: usize = u32::MAX as usize;
+    #[inline]
+    fn from_slot(v: u32) -> Self {
+        v
+    }
+    #[inline]
+    fn slot(self) -> usize {
+        self as usize
+    }
+}
+
+/// One polygon of the table: its corners in the vertex buffer, its colour and its rows.
 #[derive(Clone, Copy, Debug)]
-struct Polygon {
-    /// First of its vertices in the vertex pool.
-    start: u16,
-    /// How many.
+struct Polygon<S> {
+    /// Up to [`INDEXED_CORNERS`] corners as slots of the vertex buffer; more are a run of
+    /// consecutive slots from `corners[0]`.
+    corners: [S; INDEXED_CORNERS],
+    /// How many corners.
     len: u8,
     /// Clockwise on the display (its right side runs forward from the top vertex).
     clockwise: bool,
     color: Rgb565,
     first_row: i16,
     last_row: i16,
+}
+
+/// A polygon's corners in order, read from the vertex buffer.
+#[derive(Clone, Copy)]
+struct Ring<'a, N, S> {
+    vertices: &'a [RasterVertex<N>],
+    polygon: &'a Polygon<S>,
+}
+
+impl<N: Copy, S: Slot> Ring<'_, N, S> {
+    fn len(&self) -> usize {
+        self.polygon.len as usize
+    }
+    #[inline]
+    fn get(&self, k: usize) -> &RasterVertex<N> {
+        let c = &self.polygon.corners;
+        let slot = if self.len() <= INDEXED_CORNERS {
+            c[k].slot()
+        } else {
+            c[0].slot() + k
+        };
+        &self.vertices[slot]
+    }
+    /// Calls `f` with the corners in the order [`canonical`] gives.
+    fn ordered<R>(&self, f: impl FnOnce(&[RasterVertex<N>]) -> R) -> R
+    where
+        N: Default,
+    {
+        let n = self.len();
+        let mut v = [RasterVertex::default(); MAX_POLYGON_VERTICES];
+        for (k, d) in v.iter_mut().enumerate().take(n) {
+            *d = *self.get(k);
+        }
+        let mut out = [RasterVertex::default(); MAX_POLYGON_VERTICES];
+        let n = canonical(&v[..n], self.polygon.clockwise, &mut out);
+        f(&out[..n])
+    }
 }
 
 /// One side of an active polygon: the edge crossing the current row, walked exactly.
@@ -103,14 +182,25 @@ struct Active<N> {
 ///
 /// - `N`: number format ([`crate::Q16_16`], [`crate::Q24_8`] or `f32`);
 /// - `W`: row capacity (the widest frame, in pixels);
-/// - `V`: vertex pool (the polygons' vertices after clipping, summed);
-/// - `P`: polygon table; `A`: active list (polygons crossing one row).
+/// - `V`: vertex buffer (every vertex of the scene's meshes once, plus what clipping adds: see
+///   [`Requirements::vertices`]);
+/// - `P`: polygon table; `A`: active list (polygons crossing one row);
+/// - `S`: the slot number type ([`Slot`]: `u16` up to 65,536 vertex slots, else `u32`).
 ///
 /// Choose the capacities with [`crate::requirements()`]. All memory is in the struct:
 /// [`Scanline::RAM_BYTES`] is the whole of it.
-pub struct Scanline<N, const W: usize, const V: usize, const P: usize, const A: usize> {
-    vertices: Vec<RasterVertex<N>, V>,
-    polygons: Vec<Polygon, P>,
+pub struct Scanline<
+    N,
+    const W: usize,
+    const V: usize,
+    const P: usize,
+    const A: usize,
+    S: Slot = u16,
+> {
+    /// The frame's vertex buffer: geometry writes every vertex here once, projected and
+    /// snapped; polygons refer to it by slot.
+    vertices: [RasterVertex<N>; V],
+    polygons: Vec<Polygon<S>, P>,
     /// Polygon numbers by first row (stable: scene order within a row).
     order: Vec<u16, P>,
     active: Vec<Active<N>, A>,
@@ -128,16 +218,16 @@ pub struct Scanline<N, const W: usize, const V: usize, const P: usize, const A: 
     edges: u32,
 }
 
-impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize> Default
-    for Scanline<N, W, V, P, A>
+impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, S: Slot> Default
+    for Scanline<N, W, V, P, A, S>
 {
     fn default() -> Self {
         Self::new()
     }
 }
 
-impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize>
-    Scanline<N, W, V, P, A>
+impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, S: Slot>
+    Scanline<N, W, V, P, A, S>
 {
     /// Bytes of RAM the renderer occupies (all its tables and row buffers).
     pub const RAM_BYTES: usize = core::mem::size_of::<Self>();
@@ -145,12 +235,19 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize>
     /// An empty renderer.
     pub const fn new() -> Self {
         const {
-            assert!(V <= 1 << 16, "vertex capacity must be at most 65536");
+            assert!(
+                V <= S::MAX_SLOTS,
+                "vertex capacity beyond the slot type: use u32 slots"
+            );
             assert!(P < 1 << 16, "polygon capacity must be below 65536");
             assert!(A < 1 << 16, "active capacity must be below 65536");
         }
         Scanline {
-            vertices: Vec::new(),
+            vertices: [RasterVertex {
+                x: 0,
+                y: 0,
+                z: N::ZERO,
+            }; V],
             polygons: Vec::new(),
             order: Vec::new(),
             active: Vec::new(),
@@ -191,29 +288,33 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize>
     ) -> Result<FrameStats, Error> {
         cfg.validate(W)?;
         self.cue = Cue::for_frame(scene, cfg)?;
-        self.vertices.clear();
         self.polygons.clear();
         self.active.clear();
         self.free.clear();
         self.sorted.clear();
-        let (mut polys, mut corners) = (0u32, 0u32);
-        let (table, pool) = (&mut self.polygons, &mut self.vertices);
-        scene.polygons(cfg, &mut |poly| {
-            let v = &poly.vertices[..];
-            let Some(o) = outline(v, cfg, poly.face)? else {
+        let (mut polys, mut uncached) = (0u32, false);
+        let table = &mut self.polygons;
+        let mut buf = VertexBuffer::new(&mut self.vertices);
+        scene.polygons(cfg, &mut buf, &mut |poly| {
+            let n = poly.corners.len();
+            let mut v = [RasterVertex::default(); MAX_POLYGON_VERTICES];
+            for (k, d) in v.iter_mut().enumerate().take(n) {
+                *d = poly.vertex(k);
+            }
+            let Some(o) = outline(&v[..n], cfg, poly.face)? else {
                 return Ok(());
             };
             polys += 1;
-            corners += v.len() as u32;
             // Past a capacity, keep counting so the error can say what the scene needs.
-            if table.len() < P && pool.len() + v.len() <= V {
-                let start = pool.len() as u16;
-                for &p in v {
-                    let _ = pool.push(p); // room checked above
+            uncached |= !poly.cached;
+            if poly.cached && table.len() < P {
+                let mut corners = [S::from_slot(0); INDEXED_CORNERS];
+                for (c, &k) in corners.iter_mut().zip(poly.corners) {
+                    *c = S::from_slot(k); // the buffer has at most S::MAX_SLOTS slots
                 }
                 let _ = table.push(Polygon {
-                    start,
-                    len: v.len() as u8,
+                    corners,
+                    len: n as u8,
                     clockwise: o.clockwise,
                     color: poly.color,
                     first_row: o.first_row,
@@ -230,8 +331,8 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize>
         if polys as usize > P {
             return Err(over(Table::Polygons, polys, P));
         }
-        if corners as usize > V {
-            return Err(over(Table::Vertices, corners, V));
+        if uncached || buf.needed() > V {
+            return Err(over(Table::Vertices, buf.needed() as u32, V));
         }
         self.bucket(cfg.height as usize);
         let max_active = self.max_active()?;
@@ -366,13 +467,18 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize>
     /// edges found down each side from its top vertex.
     fn activate(&mut self, i: u16, y: i32, cfg: &Config) {
         let p = self.polygons[i as usize];
-        let ring = &self.vertices[p.start as usize..][..p.len as usize];
-        let mut ordered = [RasterVertex::default(); MAX_POLYGON_VERTICES];
-        let n = canonical(ring, p.clockwise, &mut ordered);
-        let Some(plane) = N::depth_plane(&ordered[..n], cfg.subpixel_bits as u32) else {
+        let ring = Ring {
+            vertices: &self.vertices,
+            polygon: &p,
+        };
+        let s = cfg.subpixel_bits as u32;
+        let Some(plane) = ring.ordered(|v| N::depth_plane(v, s)) else {
             return; // cannot happen: the outline has a nonzero area
         };
-        let top = (0..n).min_by_key(|&k| (ring[k].y, ring[k].x)).unwrap_or(0) as u8;
+        let n = ring.len();
+        let top = (0..n)
+            .min_by_key(|&k| (ring.get(k).y, ring.get(k).x))
+            .unwrap_or(0) as u8;
         // Clockwise on the display: forward from the top runs down the right side.
         let (Some(left), Some(right)) = (
             walk_from(ring, top, !p.clockwise, y, Side::Left, cfg),
@@ -451,7 +557,10 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize>
                 return false;
             }
             let p = &polygons[a.poly as usize];
-            let ring = &vertices[p.start as usize..][..p.len as usize];
+            let ring = Ring {
+                vertices,
+                polygon: p,
+            };
             for (side, k) in [(Side::Left, 0), (Side::Right, 2)] {
                 let w = match side {
                     Side::Left => &mut a.left,
@@ -574,8 +683,8 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize>
     }
 }
 
-impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize> Renderer<N>
-    for Scanline<N, W, V, P, A>
+impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, S: Slot> Renderer<N>
+    for Scanline<N, W, V, P, A, S>
 {
     const NAME: &'static str = "scanline";
     const RAM_BYTES: usize = Self::RAM_BYTES;
@@ -591,8 +700,8 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize> 
 
 /// The edge of one side of a polygon that crosses row `y`, walking its vertex ring from
 /// position `at` (forward or backward) downwards; `None` if the side ends above `y`.
-fn walk_from<N: Copy>(
-    ring: &[RasterVertex<N>],
+fn walk_from<N: Copy, S: Slot>(
+    ring: Ring<'_, N, S>,
     mut at: u8,
     forward: bool,
     y: i32,
@@ -606,7 +715,7 @@ fn walk_from<N: Copy>(
         } else {
             (at as usize + n - 1) % n
         };
-        let (p, q) = (&ring[at as usize], &ring[next]);
+        let (p, q) = (ring.get(at as usize), ring.get(next));
         if q.y < p.y {
             return None; // past the bottom
         }
@@ -734,12 +843,12 @@ fn winner<N: Scalar>(active: &[Active<N>], mut open: impl Iterator<Item = usize>
     open.fold(first, |b, i| if beats(active, i, b, x) { i } else { b })
 }
 
-/// RAM the scan-line renderer needs for a scene with these requirements, in bytes: its tables
-/// at exactly the sizes required plus its two rows.
+/// RAM the scan-line renderer (`u16` slots) needs for a scene with these requirements, in
+/// bytes: its tables at exactly the sizes required plus its two rows.
 pub fn ram_bytes<N: Scalar>(req: &Requirements) -> usize {
     use core::mem::size_of;
     req.vertices as usize * size_of::<RasterVertex<N>>()
-        + req.polygons as usize * (size_of::<Polygon>() + size_of::<u16>())
+        + req.polygons as usize * (size_of::<Polygon<u16>>() + size_of::<u16>())
         + req.active_polygons as usize
             * (size_of::<Active<N>>() + 2 * size_of::<u16>() + size_of::<(i32, u16)>())
         + req.width as usize * (size_of::<N>() + size_of::<Rgb565>())

@@ -4,7 +4,7 @@
 use crate::error::Error;
 use crate::math::{Affine, Vec3};
 use crate::number::Scalar;
-use crate::raster::{Config, RasterPolygon};
+use crate::raster::{Config, RasterPolygon, RasterVertex};
 use embedded_graphics_core::pixelcolor::Rgb565;
 
 mod sealed {
@@ -250,14 +250,127 @@ pub struct ScreenScene<'a, N, I = u16> {
     pub mesh: Mesh<'a, N, I>,
 }
 
+/// Polygons with at most this many corners are handed over by index
+/// ([`Polygon::corners`]); geometry hands larger ones over as a run of consecutive slots of the
+/// vertex buffer, so a renderer can keep any polygon in a few bytes.
+pub const INDEXED_CORNERS: usize = 4;
+
+/// Where geometry puts the vertices it projects and snaps, borrowed from the renderer for one
+/// frame: first one slot per vertex of each object's mesh (every shared vertex transformed,
+/// projected and snapped once per object per frame, whatever number of faces use it), then
+/// the vertices clipping makes and the runs of polygons with more than [`INDEXED_CORNERS`]
+/// corners.
+///
+/// With too little room geometry still works, face by face, handing polygons over in scratch
+/// of its own ([`Polygon::cached`] is then `false`); [`VertexBuffer::needed`] says how many
+/// slots the frame would have used.
+#[derive(Debug)]
+pub struct VertexBuffer<'a, N> {
+    slots: &'a mut [RasterVertex<N>],
+    len: usize,
+    needed: usize,
+}
+
+impl<'a, N: Copy> VertexBuffer<'a, N> {
+    /// An empty buffer over `slots`.
+    pub fn new(slots: &'a mut [RasterVertex<N>]) -> Self {
+        VertexBuffer {
+            slots,
+            len: 0,
+            needed: 0,
+        }
+    }
+    /// Slots in use.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+    /// Whether no slot is in use.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+    /// Slots the frame would have used with room for all (at least [`VertexBuffer::len`]).
+    pub fn needed(&self) -> usize {
+        self.needed
+    }
+    /// The vertices written so far.
+    pub fn as_slice(&self) -> &[RasterVertex<N>] {
+        &self.slots[..self.len]
+    }
+    /// Claims `n` slots: their first index, or `None` without room (counted as needed
+    /// either way).
+    pub(crate) fn claim(&mut self, n: usize) -> Option<usize> {
+        self.needed += n;
+        let start = self.len;
+        (self.slots.len() - start >= n).then(|| {
+            self.len += n;
+            start
+        })
+    }
+    /// Counts `n` slots as needed without claiming them (a polygon handed over in scratch that
+    /// a buffer with room would have kept).
+    pub(crate) fn claim_none(&mut self, n: usize) {
+        self.needed += n;
+    }
+    /// The claimed slots from `start`.
+    pub(crate) fn slots_from(&mut self, start: usize) -> &mut [RasterVertex<N>] {
+        &mut self.slots[start..self.len]
+    }
+}
+
+/// One polygon from geometry: clipped, projected and snapped, with its colour.
+#[derive(Clone, Copy, Debug)]
+pub struct Polygon<'a, N> {
+    /// The vertices it refers to: the frame's [`VertexBuffer`] so far when
+    /// [`Polygon::cached`], else scratch valid for this call only.
+    pub vertices: &'a [RasterVertex<N>],
+    /// Its corners in order (either winding), as indices into `vertices`. When `cached`, a
+    /// polygon with more than [`INDEXED_CORNERS`] corners has them consecutive.
+    pub corners: &'a [u32],
+    /// Whether `vertices` is the frame's buffer, so that a renderer may keep `corners` for the
+    /// rest of the frame (else it must copy what it keeps).
+    pub cached: bool,
+    /// Its colour after shading.
+    pub color: Rgb565,
+    /// Its opacity (255 = opaque), from [`Face::alpha`].
+    pub alpha: u8,
+    /// Index of the face in the scene (objects in order, faces in order; for errors).
+    pub face: u32,
+}
+
+impl<N: Copy> Polygon<'_, N> {
+    /// Corner `k`.
+    #[inline]
+    pub fn vertex(&self, k: usize) -> RasterVertex<N> {
+        self.vertices[self.corners[k] as usize]
+    }
+    /// Its corners gathered into a [`RasterPolygon`] (a copy).
+    pub fn to_raster(&self) -> RasterPolygon<N> {
+        let mut vertices = heapless::Vec::new();
+        for k in 0..self.corners.len() {
+            // At most MAX_POLYGON_VERTICES corners: geometry clips to that.
+            let _ = vertices.push(self.vertex(k));
+        }
+        RasterPolygon {
+            vertices,
+            color: self.color,
+            alpha: self.alpha,
+            face: self.face,
+        }
+    }
+}
+
 /// Anything that can feed polygons to a renderer: runs geometry and calls `f` with every
 /// polygon that survives it, in scene order.
 pub trait Scene<N: Scalar> {
-    /// Streams the scene's polygons, clipped, projected and snapped for `cfg`.
+    /// Streams the scene's polygons, clipped, projected and snapped for `cfg`, writing the
+    /// vertices into `vertices`. Model scenes drop back faces here when `cfg.cull` says so (by
+    /// the winding of the snapped vertices, the rule [`crate::raster::outline`] applies), so
+    /// that culled faces cost no lighting.
     fn polygons(
         &self,
         cfg: &Config,
-        f: &mut dyn FnMut(&RasterPolygon<N>) -> Result<(), Error>,
+        vertices: &mut VertexBuffer<'_, N>,
+        f: &mut dyn FnMut(&Polygon<'_, N>) -> Result<(), Error>,
     ) -> Result<(), Error>;
 
     /// How stored depth maps back to view distance under `cfg`, for stages after visibility

@@ -22,7 +22,7 @@ use crate::method::{FrameStats, Renderer};
 use crate::number::Scalar;
 use crate::polygons::walk_edges;
 use crate::raster::{setup, Config};
-use crate::scene::Scene;
+use crate::scene::{Scene, VertexBuffer};
 use crate::sink::{Row, RowSink};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 
@@ -77,8 +77,9 @@ impl<N: Scalar, const W: usize, const H: usize> ZBuffer<N, W, H> {
         let mut stats = FrameStats::default();
         let s = cfg.subpixel_bits as u32;
         let (depth, intensity) = (&mut self.depth, &mut self.intensity);
-        scene.polygons(cfg, &mut |poly| {
-            let Some(sp) = setup(poly, cfg)? else {
+        let mut buf = VertexBuffer::new(&mut []);
+        scene.polygons(cfg, &mut buf, &mut |poly| {
+            let Some(sp) = setup(&poly.to_raster(), cfg)? else {
                 return Ok(());
             };
             stats.polygons += 1;

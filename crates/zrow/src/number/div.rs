@@ -1,0 +1,149 @@
+//! Exact integer division for 32-bit cores.
+//!
+//! A Cortex-M3/M4 divides 32 by 32 bits in one instruction (`udiv`), but a 64-bit division is a
+//! library call of about 90 instructions. Geometry divides 64-bit numerators by 32-bit
+//! divisors thousands of times a frame (projection, depth planes, lighting), so this does it
+//! in two hardware divisions per 32-bit digit pair (Knuth's algorithm D with 16-bit digits,
+//! Hacker's Delight §9.4 `divlu`), with the same, exact, result.
+
+/// `(floor(n / d), n mod d)` for `d > 0`.
+#[inline]
+pub(crate) fn divmod_u64_u32(n: u64, d: u32) -> (u64, u32) {
+    let (hi, lo) = ((n >> 32) as u32, n as u32);
+    if hi == 0 {
+        return ((lo / d) as u64, lo % d);
+    }
+    let (qh, rh) = (hi / d, hi % d);
+    let (ql, r) = divlu(rh, lo, d);
+    (((qh as u64) << 32) | ql as u64, r)
+}
+
+/// `(u1·2^32 + u0) / v` and its remainder, for `u1 < v` (so the quotient fits 32 bits):
+/// normalise `v`, then two steps each dividing by its top 16 bits and correcting the digit
+/// estimate (at most twice).
+fn divlu(u1: u32, u0: u32, v: u32) -> (u32, u32) {
+    const B: u64 = 1 << 16;
+    let s = v.leading_zeros();
+    let v = v << s;
+    let (vn1, vn0) = ((v >> 16) as u64, (v & 0xffff) as u64);
+    let un32 = if s == 0 {
+        u1 as u64
+    } else {
+        ((u1 << s) | (u0 >> (32 - s))) as u64
+    };
+    let un10 = u0 << s;
+    let (un1, un0) = ((un10 >> 16) as u64, (un10 & 0xffff) as u64);
+    let digit = |un: u64, next: u64| {
+        let mut q = un / vn1;
+        let mut rhat = un - q * vn1;
+        while q >= B || q * vn0 > (rhat << 16) + next {
+            q -= 1;
+            rhat += vn1;
+            if rhat >= B {
+                break;
+            }
+        }
+        q
+    };
+    let q1 = digit(un32, un1);
+    // The partial remainder fits 32 bits (it is below v); the wrapping arithmetic is exact.
+    let un21 = ((un32 << 16) + un1).wrapping_sub(q1 * v as u64) as u32 as u64;
+    let q0 = digit(un21, un0);
+    let r = (((un21 << 16) + un0).wrapping_sub(q0 * v as u64) as u32) >> s;
+    (((q1 << 16) | q0) as u32, r)
+}
+
+/// `n / d` rounded to nearest, ties away from zero, for `d ≠ 0`. Two hardware divisions when
+/// `|d|` fits 32 bits, a library division otherwise. Wraps only where the quotient itself does
+/// not fit (`i64::MIN / ±1`), which callers never ask for.
+#[inline]
+pub(crate) fn div_round(n: i64, d: i64) -> i64 {
+    let (un, ud) = (n.unsigned_abs(), d.unsigned_abs());
+    let q = if ud <= u32::MAX as u64 {
+        let (q, r) = divmod_u64_u32(un, ud as u32);
+        q + (2 * r as u64 >= ud) as u64
+    } else {
+        let (q, r) = (un / ud, un % ud);
+        q + (r >= ud - r) as u64
+    };
+    if (n < 0) != (d < 0) {
+        (q as i64).wrapping_neg()
+    } else {
+        q as i64
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rng(seed: &mut u64) -> u64 {
+        *seed ^= *seed << 13;
+        *seed ^= *seed >> 7;
+        *seed ^= *seed << 17;
+        *seed
+    }
+
+    #[test]
+    fn divmod_equals_the_native_division() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let edges = [
+            1u32,
+            2,
+            3,
+            0xffff,
+            0x1_0000,
+            0x1_0001,
+            0x7fff_ffff,
+            0x8000_0000,
+            u32::MAX,
+        ];
+        for _ in 0..200_000 {
+            let r = rng(&mut seed);
+            // Numerators and divisors of every width, and the boundary values.
+            let n = r >> (rng(&mut seed) % 64);
+            let d = match rng(&mut seed) % 4 {
+                0 => edges[(r % edges.len() as u64) as usize],
+                _ => ((rng(&mut seed) as u32) >> (rng(&mut seed) % 32)).max(1),
+            };
+            assert_eq!(
+                divmod_u64_u32(n, d),
+                (n / d as u64, (n % d as u64) as u32),
+                "{n} / {d}"
+            );
+        }
+        for &d in &edges {
+            for n in [
+                0u64,
+                1,
+                d as u64 - 1,
+                d as u64,
+                u64::MAX,
+                u64::MAX - 1,
+                1 << 63,
+            ] {
+                assert_eq!(divmod_u64_u32(n, d), (n / d as u64, (n % d as u64) as u32));
+            }
+        }
+    }
+
+    #[test]
+    fn div_round_is_nearest_ties_away_from_zero() {
+        let exact = |n: i64, d: i64| {
+            let (n, d) = (n as i128, d as i128);
+            let q = (2 * n.abs() + d.abs()) / (2 * d.abs());
+            (if (n < 0) != (d < 0) { -q } else { q }) as i64
+        };
+        assert_eq!(div_round(5, 2), 3);
+        assert_eq!(div_round(-5, 2), -3);
+        assert_eq!(div_round(7, -2), -4);
+        assert_eq!(div_round(-7, 3), -2);
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        for _ in 0..200_000 {
+            let n = (rng(&mut seed) as i64) >> (rng(&mut seed) % 63);
+            let d = ((rng(&mut seed) as i64) >> (rng(&mut seed) % 63)).max(1);
+            let d = if rng(&mut seed) % 2 == 0 { d } else { -d };
+            assert_eq!(div_round(n, d), exact(n, d), "{n} / {d}");
+        }
+    }
+}
