@@ -202,9 +202,17 @@ fn sat_i32(v: i128) -> i32 {
     v.clamp(i32::MIN as i128, i32::MAX as i128) as i32
 }
 
+/// `v` as an `i32`, saturated: one comparison of the high word in the common case.
 #[inline]
 fn sat_i64(v: i64) -> i32 {
-    v.clamp(i32::MIN as i64, i32::MAX as i64) as i32
+    let low = v as i32;
+    if low as i64 == v {
+        low
+    } else if v < 0 {
+        i32::MIN
+    } else {
+        i32::MAX
+    }
 }
 
 /// The fixed-point depth plane of [`Scalar::depth_plane`] in 64-bit integers: `Some(None)` for
@@ -218,6 +226,36 @@ fn plane_i64<N: Copy>(
     s: u32,
     bits: impl Fn(N) -> i32,
 ) -> Option<Option<(i32, i32, i32)>> {
+    let half = 1i64 << s >> 1;
+    let small = |p: &RasterVertex<N>| p.x.unsigned_abs() < 1 << 22 && p.y.unsigned_abs() < 1 << 22;
+    if let [p0, p1, p2] = v {
+        if small(p0) && small(p1) && small(p2) {
+            // A triangle on screen: Newell's normal is the cross product of two edges, and
+            // with coordinates below 2^22 and depths below 2^32 every product fits 64 bits.
+            let d = |p: &RasterVertex<N>| {
+                (
+                    p.x as i64 - p0.x as i64,
+                    p.y as i64 - p0.y as i64,
+                    bits(p.z) as i64 - bits(p0.z) as i64,
+                )
+            };
+            let ((x1, y1, z1), (x2, y2, z2)) = (d(p1), d(p2));
+            let (a, b, c) = (y1 * z2 - z1 * y2, z1 * x2 - x1 * z2, x1 * y2 - y1 * x2);
+            if c == 0 {
+                return Some(None);
+            }
+            let (a, b, c) = if c < 0 { (-a, -b, -c) } else { (a, b, c) };
+            if a.unsigned_abs() < 1 << 39 && b.unsigned_abs() < 1 << 39 {
+                let num = -(a * (half - p0.x as i64) + b * (half - p0.y as i64));
+                let z_ref = (bits(p0.z) as i64).wrapping_add(div::div_round(num, c));
+                return Some(Some((
+                    z_ref as i32,
+                    sat_i64(div::div_round(-(a << s), c)),
+                    sat_i64(div::div_round(-(b << s), c)),
+                )));
+            }
+        }
+    }
     let (mut a, mut b, mut c) = (0i64, 0i64, 0i64);
     for (k, p) in v.iter().enumerate() {
         let q = &v[(k + 1) % v.len()];
@@ -232,7 +270,6 @@ fn plane_i64<N: Copy>(
     }
     let (a, b, c) = if c < 0 { (-a, -b, -c) } else { (a, b, c) };
     let (x0, y0, z0) = (v[0].x as i64, v[0].y as i64, bits(v[0].z) as i64);
-    let half = 1i64 << s >> 1;
     let num = a
         .checked_mul(half - x0)?
         .checked_add(b.checked_mul(half - y0)?)?

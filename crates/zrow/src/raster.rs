@@ -336,32 +336,57 @@ pub fn outline<T: Copy>(
     cfg: &Config,
     face: u32,
 ) -> Result<Option<Outline>, Error> {
-    if v.len() < 3 {
+    outline_of(v.len(), |k| &v[k], cfg, face)
+}
+
+/// [`outline`] of the `n` vertices `v(0)`, `v(1)`, … (read in place: from a vertex buffer
+/// through corner indices, say).
+#[inline]
+pub fn outline_of<'a, T: Copy + 'a>(
+    n: usize,
+    v: impl Fn(usize) -> &'a RasterVertex<T>,
+    cfg: &Config,
+    face: u32,
+) -> Result<Option<Outline>, Error> {
+    if n < 3 {
         return Ok(None);
     }
-    let area = signed_area2(v);
+    let area = if n == 3 {
+        let (a, b, c) = (v(0), v(1), v(2));
+        (b.x as i64 - a.x as i64) * (c.y as i64 - a.y as i64)
+            - (c.x as i64 - a.x as i64) * (b.y as i64 - a.y as i64)
+    } else {
+        (0..n).fold(0i64, |a, k| {
+            let (p, q) = (v(k), v((k + 1) % n));
+            a + p.x as i64 * q.y as i64 - q.x as i64 * p.y as i64
+        })
+    };
     if area == 0 || (cfg.cull == Cull::Back && area > 0) {
         return Ok(None);
     }
-    // y-monotone check: going round, the direction of travel in y changes sign at most twice.
-    let dir = |k: usize| {
-        let (p, q) = (&v[k], &v[(k + 1) % v.len()]);
-        (q.y as i64 - p.y as i64).signum()
-    };
-    let mut last = (0..v.len()).rev().map(dir).find(|&d| d != 0).unwrap_or(0);
-    let mut changes = 0;
-    for d in (0..v.len()).map(dir).filter(|&d| d != 0) {
-        changes += (d != last) as u32;
-        last = d;
-    }
-    if changes > 2 {
-        return Err(Error::NotConvex { face });
+    // y-monotone check (a triangle always is): going round, the direction of travel in y
+    // changes sign at most twice.
+    if n > 3 {
+        let dir = |k: usize| {
+            let (p, q) = (v(k), v((k + 1) % n));
+            (q.y as i64 - p.y as i64).signum()
+        };
+        let mut last = (0..n).rev().map(dir).find(|&d| d != 0).unwrap_or(0);
+        let mut changes = 0;
+        for d in (0..n).map(dir).filter(|&d| d != 0) {
+            changes += (d != last) as u32;
+            last = d;
+        }
+        if changes > 2 {
+            return Err(Error::NotConvex { face });
+        }
     }
     // Reject polygons whose bounding box misses every sample.
     let s = cfg.subpixel_bits as u32;
     let h = cfg.half();
     let (mut xmin, mut xmax, mut ymin, mut ymax) = (i32::MAX, i32::MIN, i32::MAX, i32::MIN);
-    for p in v {
+    for k in 0..n {
+        let p = v(k);
         xmin = xmin.min(p.x);
         xmax = xmax.max(p.x);
         ymin = ymin.min(p.y);

@@ -19,8 +19,8 @@
 //!   right edge stepped exactly (`x += 1/m`, see [`crate::raster::Dda`]) and its depth at its
 //!   left end, stepped down the edge by `dzdy + dzdx·Δx` — the seeds' `(A/m + B)/C` with the
 //!   pixel steps the edge actually takes, so it equals the plane at every pixel centre.
-//!   Entries stay where they are; the row's order by left end is kept on a list of slot
-//!   numbers (two bytes each), nearly sorted from one row to the next;
+//!   Entries stay where they are; the row's order by left end is kept on four-byte keys (left
+//!   end, slot), nearly sorted from one row to the next;
 //! - **span coherence**: where one polygon is in front at both ends of its overlap with
 //!   another it is in front throughout (depths are linear in x, so their difference cannot
 //!   change sign in between). The row is filled from a *front* polygon with no per-pixel
@@ -44,7 +44,7 @@ use crate::geometry::shade;
 use crate::method::{FrameStats, Renderer};
 use crate::number::{DepthPlane, Scalar};
 use crate::raster::{
-    canonical, edge_between, outline, Config, Dda, RasterVertex, Side, MAX_POLYGON_VERTICES,
+    canonical, edge_between, outline_of, Config, Dda, RasterVertex, Side, MAX_POLYGON_VERTICES,
 };
 use crate::requirements::Requirements;
 use crate::scene::{Scene, VertexBuffer, INDEXED_CORNERS};
@@ -165,8 +165,9 @@ struct Active<N> {
     left: Walk,
     right: Walk,
     plane: DepthPlane<N>,
-    /// Depth at the centre of pixel `xl` of the current row.
-    z_left: N,
+    /// The plane's depth at column 0 of the current row: a depth in this row is then one
+    /// multiply-add, [`depth_at`].
+    z_row: N,
     /// This row's span: `xl..xr` (unclamped; may be empty).
     xl: i32,
     xr: i32,
@@ -206,8 +207,8 @@ pub struct Scanline<
     active: Vec<Active<N>, A>,
     /// Free slots of `active`.
     free: Vec<u16, A>,
-    /// The occupied slots of `active`, by left end this row.
-    sorted: Vec<u16, A>,
+    /// The occupied slots of `active` by left end this row, as sort keys: [`key`].
+    sorted: Vec<u32, A>,
     /// Polygons covering the current piece of the row, by the column where their span ends.
     open: BinaryHeap<(i32, u16), Min, A>,
     depth: [N; W],
@@ -297,11 +298,8 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         let mut buf = VertexBuffer::new(&mut self.vertices);
         scene.polygons(cfg, &mut buf, &mut |poly| {
             let n = poly.corners.len();
-            let mut v = [RasterVertex::default(); MAX_POLYGON_VERTICES];
-            for (k, d) in v.iter_mut().enumerate().take(n) {
-                *d = poly.vertex(k);
-            }
-            let Some(o) = outline(&v[..n], cfg, poly.face)? else {
+            let at = |k: usize| &poly.vertices[poly.corners[k] as usize];
+            let Some(o) = outline_of(n, at, cfg, poly.face)? else {
                 return Ok(());
             };
             polys += 1;
@@ -335,7 +333,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             return Err(over(Table::Vertices, buf.needed() as u32, V));
         }
         self.bucket(cfg.height as usize);
-        let max_active = self.max_active()?;
+        let max_active = self.max_active(cfg.height as usize)?;
         self.edges = 0;
         Ok(FrameStats {
             polygons: polys,
@@ -379,30 +377,60 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         }
     }
 
-    /// Most polygons active in one row, checked against `A`: a sweep over the polygons by
-    /// first row with their last rows in a min-heap (the `open` heap, not yet in use).
-    fn max_active(&mut self) -> Result<u32, Error> {
-        let open = &mut self.open;
-        open.clear();
-        let mut max = 0;
-        for &i in &self.order {
-            let p = &self.polygons[i as usize];
-            while open
-                .peek()
-                .is_some_and(|&(last, _)| last < p.first_row as i32)
-            {
-                open.pop();
+    /// Most polygons active in one row, checked against `A`: a difference array over the rows
+    /// (+1 where a polygon starts, −1 after it ends), summed top to bottom. Its counters
+    /// borrow the colour row, as [`Self::bucket`]'s do (a frame taller than the row is wide
+    /// uses a sweep with the `open` heap instead).
+    fn max_active(&mut self, height: usize) -> Result<u32, Error> {
+        let max = if height <= W {
+            let count = &mut self.intensity[..height];
+            let raw = |c: Rgb565| RawU16::from(c).into_inner();
+            let of = |v: u16| Rgb565::from(RawU16::new(v));
+            count.fill(of(0));
+            for p in &self.polygons {
+                let c = &mut count[p.first_row as usize];
+                *c = of(raw(*c).wrapping_add(1));
+                if let Some(c) = count.get_mut(p.last_row as usize + 1) {
+                    *c = of(raw(*c).wrapping_sub(1));
+                }
             }
-            if open.push((p.last_row as i32, i)).is_err() {
+            let (mut running, mut max) = (0u16, 0u16);
+            for c in count.iter() {
+                running = running.wrapping_add(raw(*c));
+                max = max.max(running);
+            }
+            max as u32
+        } else {
+            let open = &mut self.open;
+            open.clear();
+            let mut max = 0u32;
+            for &i in &self.order {
+                let p = &self.polygons[i as usize];
+                while open
+                    .peek()
+                    .is_some_and(|&(last, _)| last < p.first_row as i32)
+                {
+                    open.pop();
+                }
+                let _ = open.push((p.last_row as i32, i)); // room: popped above or below A
+                max = max.max(open.len() as u32);
+                if open.len() >= A {
+                    break; // over (or at) the capacity: counted exactly below
+                }
+            }
+            open.clear();
+            max
+        };
+        if max as usize > A || (height > W && max as usize >= A) {
+            let needed = self.max_active_exact();
+            if needed as usize > A {
                 return Err(Error::Capacity {
                     table: Table::ActivePolygons,
-                    needed: self.max_active_exact(),
+                    needed,
                     capacity: A as u32,
                 });
             }
-            max = max.max(open.len() as u32);
         }
-        open.clear();
         Ok(max)
     }
 
@@ -472,13 +500,23 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             polygon: &p,
         };
         let s = cfg.subpixel_bits as u32;
-        let Some(plane) = ring.ordered(|v| N::depth_plane(v, s)) else {
-            return; // cannot happen: the outline has a nonzero area
-        };
         let n = ring.len();
         let top = (0..n)
             .min_by_key(|&k| (ring.get(k).y, ring.get(k).x))
-            .unwrap_or(0) as u8;
+            .unwrap_or(0);
+        // The plane from the vertices in canonical order (top-left vertex first, clockwise on
+        // the display), so the same polygon always gets the same bits.
+        let plane = if n == 3 {
+            let step = if p.clockwise { 1 } else { 2 };
+            let v = |k: usize| *ring.get((top + k * step) % 3);
+            N::depth_plane(&[v(0), v(1), v(2)], s)
+        } else {
+            ring.ordered(|v| N::depth_plane(v, s))
+        };
+        let Some(plane) = plane else {
+            return; // cannot happen: the outline has a nonzero area
+        };
+        let top = top as u8;
         // Clockwise on the display: forward from the top runs down the right side.
         let (Some(left), Some(right)) = (
             walk_from(ring, top, !p.clockwise, y, Side::Left, cfg),
@@ -499,7 +537,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             left,
             right,
             plane,
-            z_left: plane.at(xl, y),
+            z_row: plane.at(0, y),
             xl,
             xr: right.dda.x,
             last_row: p.last_row,
@@ -516,7 +554,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         } else {
             self.active[slot as usize] = a;
         }
-        let _ = self.sorted.push(slot); // at most A slots are occupied
+        let _ = self.sorted.push(key(xl, slot)); // at most A slots are occupied
     }
 
     /// The frame's cue if it is interpolated affinely (down edges and across spans).
@@ -525,17 +563,18 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             .filter(|c| c.interpolation == Interpolation::Affine)
     }
 
-    /// Insertion sort of the occupied slots by left end (stable): the order barely changes
-    /// from row to row, and what moves are two-byte slot numbers.
+    /// Insertion sort of the keys (left end, then slot): the order barely changes from row to
+    /// row, and what moves are four-byte keys, compared as they are.
     fn sort_active(&mut self) {
-        let (active, sorted) = (&self.active, &mut self.sorted);
+        let sorted = &mut self.sorted[..];
         for i in 1..sorted.len() {
-            let x = active[sorted[i] as usize].xl;
-            if active[sorted[i - 1] as usize].xl > x {
-                // `sorted[..i]` is sorted; after the entries at or left of x.
-                let pos = sorted[..i].partition_point(|&k| active[k as usize].xl <= x);
-                sorted[pos..=i].rotate_right(1);
+            let k = sorted[i];
+            let mut j = i;
+            while j > 0 && sorted[j - 1] > k {
+                sorted[j] = sorted[j - 1];
+                j -= 1;
             }
+            sorted[j] = k;
         }
     }
 
@@ -550,7 +589,8 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             &self.vertices,
             &mut self.edges,
         );
-        self.sorted.retain(|&slot| {
+        self.sorted.retain_mut(|k| {
+            let slot = *k as u16;
             let a = &mut active[slot as usize];
             if a.last_row as i32 <= y {
                 let _ = free.push(slot); // at most A slots
@@ -583,10 +623,9 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                     }
                 }
             }
-            let (xl, xr) = (a.left.dda.x, a.right.dda.x);
-            a.z_left = a.z_left.step(a.plane.dzdx, xl - a.xl).step(a.plane.dzdy, 1);
-            a.xl = xl;
-            a.xr = xr;
+            (a.xl, a.xr) = (a.left.dda.x, a.right.dda.x);
+            a.z_row = a.plane.at(0, y + 1);
+            *k = key(a.xl, slot);
             true
         });
     }
@@ -619,7 +658,8 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         // The front polygon (its slot) and the first column where it may no longer be in front.
         let mut front: Option<(usize, i32)> = None;
         loop {
-            while let Some(&slot) = sorted.get(k) {
+            while let Some(&key) = sorted.get(k) {
+                let slot = key as u16;
                 let a = &active[slot as usize];
                 if a.xl > cur {
                     break;
@@ -633,7 +673,10 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 }
                 k += 1;
             }
-            let next_start = sorted.get(k).map_or(w, |&s| active[s as usize].xl).min(w);
+            let next_start = sorted
+                .get(k)
+                .map_or(w, |&s| active[s as u16 as usize].xl)
+                .min(w);
             if front.is_none() && !open.is_empty() {
                 front = Some(match open.len() {
                     // Alone: in front until it closes (the common case on a mesh).
@@ -647,7 +690,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                     let a = &active[p];
                     let next = next_start.min(a.xr).min(until).min(w);
                     let (x0, x1) = (cur as usize, next as usize);
-                    self.intensity[x0..x1].fill(a.color);
+                    fill_run(&mut self.intensity[x0..x1], a.color);
                     if want_depth {
                         fill_depth(&mut self.depth[x0..x1], a, cur);
                     }
@@ -658,7 +701,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 }
                 None => {
                     let (x0, x1) = (cur as usize, next_start as usize);
-                    self.intensity[x0..x1].fill(background);
+                    fill_run(&mut self.intensity[x0..x1], background);
                     if want_depth {
                         self.depth[x0..x1].fill(N::MAX);
                     }
@@ -759,9 +802,31 @@ fn edge_cue<N: Scalar>(c: &Cue<N>, plane: &DepthPlane<N>, w: &Walk, y: i32) -> [
     ]
 }
 
+/// A sort key: the left end (biased to unsigned; spans lie within the guard band, far inside
+/// ±2^15) above the slot, so keys order by left end, then slot.
+#[inline]
+fn key(xl: i32, slot: u16) -> u32 {
+    ((xl + 0x8000) as u32) << 16 | slot as u32
+}
+
+/// Depth of an active polygon at the centre of pixel `x` of the current row (in fixed point
+/// the plane's own bits: wrapping steps are exact).
 #[inline]
 fn depth_at<N: Scalar>(a: &Active<N>, x: i32) -> N {
-    a.z_left.step(a.plane.dzdx, x - a.xl)
+    a.z_row.step(a.plane.dzdx, x)
+}
+
+/// Fills a run of pixels with one colour, eight at a time (unrolled halfword stores: about
+/// one instruction a pixel, against three for a plain loop).
+#[inline]
+fn fill_run(run: &mut [Rgb565], c: Rgb565) {
+    let mut chunks = run.chunks_exact_mut(8);
+    for ch in &mut chunks {
+        ch.copy_from_slice(&[c; 8]);
+    }
+    for p in chunks.into_remainder() {
+        *p = c;
+    }
 }
 
 /// Affine depth cue across `x0..x1` (already filled with the polygon's colour): the factor
@@ -850,6 +915,9 @@ pub fn ram_bytes<N: Scalar>(req: &Requirements) -> usize {
     req.vertices as usize * size_of::<RasterVertex<N>>()
         + req.polygons as usize * (size_of::<Polygon<u16>>() + size_of::<u16>())
         + req.active_polygons as usize
-            * (size_of::<Active<N>>() + 2 * size_of::<u16>() + size_of::<(i32, u16)>())
+            * (size_of::<Active<N>>()
+                + size_of::<u16>()
+                + size_of::<u32>()
+                + size_of::<(i32, u16)>())
         + req.width as usize * (size_of::<N>() + size_of::<Rgb565>())
 }

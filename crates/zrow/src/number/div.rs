@@ -20,20 +20,22 @@ pub(crate) fn divmod_u64_u32(n: u64, d: u32) -> (u64, u32) {
 
 /// `(u1·2^32 + u0) / v` and its remainder, for `u1 < v` (so the quotient fits 32 bits):
 /// normalise `v`, then two steps each dividing by its top 16 bits and correcting the digit
-/// estimate (at most twice).
+/// estimate (at most twice). Every intermediate fits 32 bits (the product in the correction
+/// test is formed only once the digit is below 2^16).
+#[inline]
 fn divlu(u1: u32, u0: u32, v: u32) -> (u32, u32) {
-    const B: u64 = 1 << 16;
+    const B: u32 = 1 << 16;
     let s = v.leading_zeros();
     let v = v << s;
-    let (vn1, vn0) = ((v >> 16) as u64, (v & 0xffff) as u64);
+    let (vn1, vn0) = (v >> 16, v & 0xffff);
     let un32 = if s == 0 {
-        u1 as u64
+        u1
     } else {
-        ((u1 << s) | (u0 >> (32 - s))) as u64
+        (u1 << s) | (u0 >> (32 - s))
     };
     let un10 = u0 << s;
-    let (un1, un0) = ((un10 >> 16) as u64, (un10 & 0xffff) as u64);
-    let digit = |un: u64, next: u64| {
+    let (un1, un0) = (un10 >> 16, un10 & 0xffff);
+    let digit = |un: u32, next: u32| {
         let mut q = un / vn1;
         let mut rhat = un - q * vn1;
         while q >= B || q * vn0 > (rhat << 16) + next {
@@ -46,11 +48,16 @@ fn divlu(u1: u32, u0: u32, v: u32) -> (u32, u32) {
         q
     };
     let q1 = digit(un32, un1);
-    // The partial remainder fits 32 bits (it is below v); the wrapping arithmetic is exact.
-    let un21 = ((un32 << 16) + un1).wrapping_sub(q1 * v as u64) as u32 as u64;
+    // The partial remainder is below v; the wrapping arithmetic is exact modulo 2^32.
+    let un21 = (un32 << 16)
+        .wrapping_add(un1)
+        .wrapping_sub(q1.wrapping_mul(v));
     let q0 = digit(un21, un0);
-    let r = (((un21 << 16) + un0).wrapping_sub(q0 * v as u64) as u32) >> s;
-    (((q1 << 16) | q0) as u32, r)
+    let r = (un21 << 16)
+        .wrapping_add(un0)
+        .wrapping_sub(q0.wrapping_mul(v))
+        >> s;
+    ((q1 << 16) | q0, r)
 }
 
 /// `n / d` rounded to nearest, ties away from zero, for `d ≠ 0`. Two hardware divisions when
