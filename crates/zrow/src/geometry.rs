@@ -653,24 +653,72 @@ impl<N: Scalar> Projector<N> {
     }
 }
 
-/// Flat Lambert shading of one object's faces: the light in view space, the matrix that takes
-/// model-space normals there, the ambient fraction.
+/// Flat Lambert shading of one object's faces: `ambient + (1 − ambient)·max(0, n̂·l̂)` with the
+/// face normal taken to view space by the cofactor matrix C of the object's model-view
+/// transform (right for any scale or mirror).
+///
+/// When C is a scaled rotation — CᵀC = g·I within 2^-10 relative, as for any rigid motion or
+/// uniform scale — the light is taken to model space once per object instead (`l_m = Cᵀl/√g`),
+/// so a face costs two dot products and a reciprocal square root: `n·l_m / √(n·n)`.
+/// Otherwise each normal is transformed: `Cn·l / √(Cn·Cn)`.
 struct Lighting<N> {
+    /// Light in view space, unit length.
     light: Option<Vec3<N>>,
     to_view: Option<Affine<N>>,
+    /// Light in model space, scaled by `1/√g`, when C is a scaled rotation.
+    model_light: Option<Vec3<N>>,
     ambient: N,
     math: crate::math::MathLib,
 }
 
 impl<N: Scalar> Lighting<N> {
+    fn for_object(
+        mv: &Affine<N>,
+        light: Option<Vec3<N>>,
+        ambient: N,
+        math: crate::math::MathLib,
+    ) -> Self {
+        let to_view = normal_matrix(mv);
+        let model_light = match (to_view, light) {
+            (Some(c), Some(l)) => scaled_rotation(&c, math).map(|k| {
+                // Cᵀl / √g.
+                let col = |j: usize| {
+                    c.m[0][j]
+                        .mul(l.x)
+                        .add(c.m[1][j].mul(l.y))
+                        .add(c.m[2][j].mul(l.z))
+                        .mul(k)
+                };
+                Vec3::new(col(0), col(1), col(2))
+            }),
+            _ => None,
+        };
+        Lighting {
+            light,
+            to_view,
+            model_light,
+            ambient,
+            math,
+        }
+    }
+
     /// The colour of a face with model-space normal `normal` (any length; `None`: unlit).
     fn color(&self, base: Rgb565, normal: Option<[N; 3]>) -> Rgb565 {
-        let lambert = match (self.light, self.to_view, normal) {
-            (Some(l), Some(m), Some([x, y, z])) => {
+        let lambert = match (normal, self.model_light, self.light, self.to_view) {
+            (Some([x, y, z]), Some(lm), _, _) => {
+                let n = Vec3::new(x, y, z);
+                let d = n.dot(lm);
+                if d > N::ZERO {
+                    d.mul(self.math.rsqrt(n.dot(n)))
+                } else {
+                    N::ZERO
+                }
+            }
+            (Some([x, y, z]), None, Some(l), Some(m)) => {
                 let n = m.apply_dir(Vec3::new(x, y, z));
                 let d = n.dot(l);
                 if d > N::ZERO {
-                    d.div(self.math.sqrt(n.dot(n))).unwrap_or(N::ZERO)
+                    d.mul(self.math.rsqrt(n.dot(n)))
                 } else {
                     N::ZERO
                 }
@@ -680,6 +728,23 @@ impl<N: Scalar> Lighting<N> {
         let a = self.ambient;
         shade(base, a.add(N::ONE.sub(a).mul(lambert)))
     }
+}
+
+/// `1/√g` if CᵀC = g·I within 2^-10 relative (C a scaled rotation, possibly mirrored).
+fn scaled_rotation<N: Scalar>(c: &Affine<N>, math: crate::math::MathLib) -> Option<N> {
+    let g = |i: usize, j: usize| {
+        c.m[0][i]
+            .mul(c.m[0][j])
+            .add(c.m[1][i].mul(c.m[1][j]))
+            .add(c.m[2][i].mul(c.m[2][j]))
+    };
+    let d = g(0, 0).add(g(1, 1)).add(g(2, 2));
+    let mean = d.div(N::from_f32(3.0)?)?;
+    let tol = mean.div(N::from_f32(1024.0)?)?;
+    let abs = |v: N| if v < N::ZERO { v.neg() } else { v };
+    let close = |v: N, want: N| abs(v.sub(want)) <= tol;
+    let ok = (0..3).all(|i| (0..3).all(|j| close(g(i, j), if i == j { mean } else { N::ZERO })));
+    (ok && mean > N::ZERO).then(|| math.rsqrt(mean))
 }
 
 impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
@@ -702,12 +767,7 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
         let mut corners = [0u32; MAX_POLYGON_VERTICES];
         for obj in self.objects {
             let mv = self.camera.view.then_after(&obj.transform);
-            let lighting = Lighting {
-                light,
-                to_view: normal_matrix(&mv),
-                ambient: self.light.ambient,
-                math: cfg.math,
-            };
+            let lighting = Lighting::for_object(&mv, light, self.light.ambient, cfg.math);
             let mesh = obj.mesh;
             // Every vertex once: transformed, and, inside the view volume and the guard band,
             // projected and snapped.

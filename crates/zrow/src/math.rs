@@ -11,6 +11,10 @@ use crate::number::Scalar;
 /// | tan | rel. error 1.3 % on \|x\| ≤ 1.4 | ≤ 1 ULP |
 /// | sqrt | rel. error 6.1 % on 1e-6..1e6 | [`Scalar::sqrt`]: within 1 ULP |
 ///
+/// Lighting uses reciprocal square roots: [`Scalar::rsqrt`] for [`MathLib::Libm`] (relative
+/// error below 2^-18 in fixed point, a few ULP in f32), micromath's `invsqrt` (3.4 %) for
+/// [`MathLib::Micromath`].
+///
 /// Micromath is smaller and, on a Cortex-M without a fast divider, faster; its errors move
 /// vertices (trig) and change face intensities (sqrt). [`Scalar::sqrt`] itself is always exact
 /// (Q16.16: floor-exact; f32: refined to 1 ULP); `MathLib` picks what lighting uses.
@@ -57,6 +61,20 @@ impl MathLib {
                 N::from_f32(micromath::F32Ext::sqrt(v)).unwrap_or(N::ZERO)
             }
             MathLib::Libm => x.sqrt(),
+        }
+    }
+    /// `1/√x` in any format: micromath's estimate in `f32` for [`MathLib::Micromath`],
+    /// [`Scalar::rsqrt`] for [`MathLib::Libm`]. 0 for `x ≤ 0`.
+    pub fn rsqrt<N: Scalar>(self, x: N) -> N {
+        match self {
+            MathLib::Micromath => {
+                let v = x.to_f32();
+                if v.is_nan() || v <= 0.0 {
+                    return N::ZERO;
+                }
+                N::from_f32(micromath::F32Ext::invsqrt(v)).unwrap_or(N::ZERO)
+            }
+            MathLib::Libm => x.rsqrt(),
         }
     }
 }

@@ -88,6 +88,9 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     const ONE: Self;
     /// The largest value; a depth row is cleared to it (the seeds' "`depth[x]` = 1.0 (max value)").
     const MAX: Self;
+    /// Whether [`Scalar::step`] is exact (fixed point: wrapping integer steps equal the plane
+    /// bit for bit), so a renderer may step a depth instead of evaluating the plane again.
+    const EXACT_STEPS: bool;
 
     /// Converts from `f32`; `None` for NaN, infinity or a value outside the format's range.
     fn from_f32(v: f32) -> Option<Self>;
@@ -131,6 +134,11 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     /// rounding: floor for fixed point (the root's bits are `isqrt(bits·2^F)`, F the
     /// fractional bits), within 1 ULP for f32.
     fn sqrt(self) -> Self;
+    /// `1/√self` for a positive value (0 otherwise). Fixed point: normalised by an even shift,
+    /// a 24-entry table guess and two Newton steps (no division), relative error below
+    /// 2^-18 before the final rounding; f32: micromath's estimate and two Newton steps, within
+    /// a few ULP.
+    fn rsqrt(self) -> Self;
     /// Clamps to 0..=1 and scales to 0..=255 (truncating).
     fn to_unit_u8(self) -> u8;
 
@@ -212,6 +220,41 @@ fn sat_i64(v: i64) -> i32 {
         i32::MIN
     } else {
         i32::MAX
+    }
+}
+
+/// `1/√t` at the middle of each sixteenth of t ∈ [1/2, 2), in 2.30 fixed point: the first
+/// guess of [`rsqrt_bits`] (within 3 %).
+const RSQRT_GUESS: [u32; 24] = [
+    1473161629, 1393471397, 1325455684, 1266516759, 1214800200, 1168942037, 1127913670, 1090922784,
+    1057347856, 1026693558, 998559613, 972618566, 948599586, 926276469, 905458609, 885984104,
+    867714429, 850530263, 834328203, 819018128, 804521086, 790767575, 777696137, 765252196,
+];
+
+/// The raw bits of `1/√x` for the fixed-point value with raw bits `raw` and `f` (even)
+/// fractional bits; 0 for `raw ≤ 0`. `raw` is shifted left by an even amount into
+/// `m ∈ [2^29, 2^31)`, so `x = t·2^(30 − f − sh)` with `t = m/2^30 ∈ [1/2, 2)`; `1/√t` starts
+/// from [`RSQRT_GUESS`] and takes two Newton steps `r ← r·(3 − t·r²)/2` (3 % → 1.4e-3 →
+/// 3e-6), then the power of two is shifted back in, rounded to nearest.
+fn rsqrt_bits(raw: i32, f: u32) -> i32 {
+    if raw <= 0 {
+        return 0;
+    }
+    let sh = (raw.leading_zeros() - 1) & !1;
+    let m = (raw as u32) << sh;
+    let mut r = RSQRT_GUESS[(m >> 26) as usize - 8] as u64;
+    for _ in 0..2 {
+        let r2 = (r * r) >> 30;
+        let tr2 = (m as u64 * r2) >> 30;
+        r = (r * ((3u64 << 30) - tr2)) >> 31;
+    }
+    // 1/√x = (r/2^30)·2^((f + sh − 30)/2), as raw bits: r·2^((f + sh − 30)/2 + f − 30).
+    let shift = (f + sh) as i32 / 2 - 15 + f as i32 - 30;
+    if shift >= 0 {
+        sat_i64(((r as i64) << shift.min(32)).min(i32::MAX as i64))
+    } else {
+        let s = (-shift) as u32;
+        ((r + (1 << (s - 1))) >> s) as i32
     }
 }
 
@@ -341,6 +384,7 @@ macro_rules! impl_fixed {
             const ZERO: Self = $t::ZERO;
             const ONE: Self = $t::ONE;
             const MAX: Self = $t::MAX;
+            const EXACT_STEPS: bool = true;
 
             fn from_f32(v: f32) -> Option<Self> {
                 $t::checked_from_num(v)
@@ -424,10 +468,13 @@ macro_rules! impl_fixed {
                 for v in e1.iter_mut().chain(e2.iter_mut()) {
                     *v >>= pre;
                 }
+                // Below 2^30: 32-bit factors, 64-bit products (one SMULL each).
+                let (e1, e2) = (e1.map(|v| v as i32), e2.map(|v| v as i32));
+                let p = |a: i32, b: i32| a as i64 * b as i64;
                 let n = [
-                    e1[1] * e2[2] - e1[2] * e2[1],
-                    e1[2] * e2[0] - e1[0] * e2[2],
-                    e1[0] * e2[1] - e1[1] * e2[0],
+                    p(e1[1], e2[2]) - p(e1[2], e2[1]),
+                    p(e1[2], e2[0]) - p(e1[0], e2[2]),
+                    p(e1[0], e2[1]) - p(e1[1], e2[0]),
                 ];
                 let m = n.iter().map(|v| v.unsigned_abs()).max().unwrap_or(0);
                 if m == 0 {
@@ -449,6 +496,9 @@ macro_rules! impl_fixed {
                 // so the product fits 47 bits and the root 24: it fits the format.
                 let root = ((self.to_bits() as u64) << $t::FRAC_NBITS).isqrt();
                 $t::from_bits(root as i32)
+            }
+            fn rsqrt(self) -> Self {
+                $t::from_bits(rsqrt_bits(self.to_bits(), $t::FRAC_NBITS))
             }
             fn to_unit_u8(self) -> u8 {
                 let f = $t::FRAC_NBITS;
@@ -533,6 +583,7 @@ impl Scalar for f32 {
     const ZERO: Self = 0.0;
     const ONE: Self = 1.0;
     const MAX: Self = f32::MAX;
+    const EXACT_STEPS: bool = false;
 
     fn from_f32(v: f32) -> Option<Self> {
         v.is_finite().then_some(v)
@@ -604,6 +655,16 @@ impl Scalar for f32 {
             r = 0.5 * (r + self / r);
         }
         r
+    }
+    fn rsqrt(self) -> Self {
+        if self.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) || !self.is_finite() {
+            return 0.0;
+        }
+        let mut y = micromath::F32Ext::invsqrt(self);
+        for _ in 0..2 {
+            y *= 1.5 - 0.5 * self * y * y;
+        }
+        y
     }
     fn to_unit_u8(self) -> u8 {
         if self.is_nan() {
@@ -834,6 +895,31 @@ mod tests {
     }
 
     fixed_tests!(q16_16, Q16_16, 16, "q16.16");
+
+    #[test]
+    fn rsqrt_is_within_its_bound() {
+        // Relative error 2^-18 before rounding, plus half a unit of the last place.
+        for f in [8u32, 16] {
+            let mut raw = 1i64;
+            while raw < i32::MAX as i64 / 2 {
+                for r in [raw, raw + raw / 3, raw + raw / 7 + 1].map(|r| r as i32) {
+                    let x = r as f64 / (1u64 << f) as f64;
+                    let want = 1.0 / x.sqrt() * (1u64 << f) as f64;
+                    let got = rsqrt_bits(r, f) as f64;
+                    assert!(
+                        (got - want).abs() <= want * 2f64.powi(-18) + 0.5,
+                        "f {f} raw {r}: {got} vs {want}"
+                    );
+                }
+                raw = raw * 5 / 4 + 1;
+            }
+        }
+        assert_eq!(rsqrt_bits(0, 16), 0);
+        assert_eq!(rsqrt_bits(-5, 16), 0);
+        assert_eq!(rsqrt_bits(4 << 16, 16), 1 << 15); // 1/√4 = 0.5
+        let f = Scalar::rsqrt(2.0f32);
+        assert!((f - core::f32::consts::FRAC_1_SQRT_2).abs() < 2e-7, "{f}");
+    }
 
     #[test]
     fn plane_in_64_bits_equals_the_128_bit_one() {

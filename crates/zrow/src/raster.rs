@@ -275,6 +275,23 @@ impl Dda {
         }
     }
 
+    /// The walk of the edge from (`x0`, `y0`) down to (`x1`, `y1`) (sub-pixels, `y1 > y0`) at
+    /// sample row `row`: [`Edge::dda_at`] without building the edge.
+    #[inline]
+    pub fn between(x0: i32, y0: i32, x1: i32, y1: i32, row: i32, s: u32) -> Dda {
+        Edge {
+            first_row: 0,
+            last_row: 0,
+            x0,
+            y0,
+            dx: x1 - x0,
+            dy: y1 - y0,
+            poly: 0,
+            side: Side::Left,
+        }
+        .dda_at(row, s)
+    }
+
     /// Moves to the next row.
     #[inline]
     pub fn step(&mut self) {

@@ -44,7 +44,7 @@ use crate::geometry::shade;
 use crate::method::{FrameStats, Renderer};
 use crate::number::{DepthPlane, Scalar};
 use crate::raster::{
-    canonical, edge_between, outline_of, Config, Dda, RasterVertex, Side, MAX_POLYGON_VERTICES,
+    canonical, outline_of, row_at_or_below, Config, Dda, RasterVertex, MAX_POLYGON_VERTICES,
 };
 use crate::requirements::Requirements;
 use crate::scene::{Scene, VertexBuffer, INDEXED_CORNERS};
@@ -52,7 +52,6 @@ use crate::shading::{Cue, Interpolation};
 use crate::sink::{Row, RowSink};
 use embedded_graphics_core::pixelcolor::raw::{RawData, RawU16};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-use heapless::binary_heap::{BinaryHeap, Min};
 use heapless::Vec;
 
 /// The integer type of a slot number in the vertex buffer: `u16` (the default, up to 65,536
@@ -175,8 +174,10 @@ struct Active<N> {
     /// Scene order: the index in the polygon table.
     poly: u16,
     color: Rgb565,
-    /// Affine depth cue: factors and steps per row on the left and right edges.
+    /// Affine depth cue: factors and steps per row on the left and right edges, and the last
+    /// rows of the edges they were set up for.
     cue: [N; 4],
+    cue_last: [i16; 2],
 }
 
 /// The scan-line renderer.
@@ -209,8 +210,9 @@ pub struct Scanline<
     free: Vec<u16, A>,
     /// The occupied slots of `active` by left end this row, as sort keys: [`key`].
     sorted: Vec<u32, A>,
-    /// Polygons covering the current piece of the row, by the column where their span ends.
-    open: BinaryHeap<(i32, u16), Min, A>,
+    /// Polygons open at the current piece of the row (their slots; those that closed behind
+    /// the front are pruned when a new front is sought).
+    open: Vec<u16, A>,
     depth: [N; W],
     intensity: [Rgb565; W],
     /// This frame's depth cue, if shading is not flat.
@@ -254,7 +256,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             active: Vec::new(),
             free: Vec::new(),
             sorted: Vec::new(),
-            open: BinaryHeap::new(),
+            open: Vec::new(),
             // All zero, so a `static` renderer lands in .bss, not copied from flash; both rows
             // are rewritten in full before each is sent.
             depth: [N::ZERO; W],
@@ -379,72 +381,46 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
 
     /// Most polygons active in one row, checked against `A`: a difference array over the rows
     /// (+1 where a polygon starts, −1 after it ends), summed top to bottom. Its counters
-    /// borrow the colour row, as [`Self::bucket`]'s do (a frame taller than the row is wide
-    /// uses a sweep with the `open` heap instead).
+    /// borrow the colour row, as [`Self::bucket`]'s do, a row's width of rows at a time.
     fn max_active(&mut self, height: usize) -> Result<u32, Error> {
-        let max = if height <= W {
-            let count = &mut self.intensity[..height];
-            let raw = |c: Rgb565| RawU16::from(c).into_inner();
-            let of = |v: u16| Rgb565::from(RawU16::new(v));
+        let raw = |c: Rgb565| RawU16::from(c).into_inner();
+        let of = |v: u16| Rgb565::from(RawU16::new(v));
+        let (mut max, mut base) = (0u16, 0usize);
+        while base < height {
+            let len = (height - base).min(W);
+            let count = &mut self.intensity[..len];
             count.fill(of(0));
+            // Polygons already open at this chunk's first row.
+            let mut running = 0u16;
             for p in &self.polygons {
-                let c = &mut count[p.first_row as usize];
-                *c = of(raw(*c).wrapping_add(1));
-                if let Some(c) = count.get_mut(p.last_row as usize + 1) {
+                let (first, last) = (p.first_row as usize, p.last_row as usize);
+                if first < base {
+                    running += (last >= base) as u16;
+                } else if first < base + len {
+                    let c = &mut count[first - base];
+                    *c = of(raw(*c).wrapping_add(1));
+                }
+                if (base..base + len).contains(&(last + 1)) {
+                    let c = &mut count[last + 1 - base];
                     *c = of(raw(*c).wrapping_sub(1));
                 }
             }
-            let (mut running, mut max) = (0u16, 0u16);
+            // The polygons open at `base` were counted in `running`; their −1 (if in this
+            // chunk) is in `count`, so the sum stays exact.
             for c in count.iter() {
                 running = running.wrapping_add(raw(*c));
                 max = max.max(running);
             }
-            max as u32
-        } else {
-            let open = &mut self.open;
-            open.clear();
-            let mut max = 0u32;
-            for &i in &self.order {
-                let p = &self.polygons[i as usize];
-                while open
-                    .peek()
-                    .is_some_and(|&(last, _)| last < p.first_row as i32)
-                {
-                    open.pop();
-                }
-                let _ = open.push((p.last_row as i32, i)); // room: popped above or below A
-                max = max.max(open.len() as u32);
-                if open.len() >= A {
-                    break; // over (or at) the capacity: counted exactly below
-                }
-            }
-            open.clear();
-            max
-        };
-        if max as usize > A || (height > W && max as usize >= A) {
-            let needed = self.max_active_exact();
-            if needed as usize > A {
-                return Err(Error::Capacity {
-                    table: Table::ActivePolygons,
-                    needed,
-                    capacity: A as u32,
-                });
-            }
+            base += len;
         }
-        Ok(max)
-    }
-
-    /// The exact maximum by brute force, only when reporting an overflow.
-    fn max_active_exact(&self) -> u32 {
-        let ps = &self.polygons;
-        ps.iter()
-            .map(|p| {
-                ps.iter()
-                    .filter(|q| q.first_row <= p.first_row && p.first_row <= q.last_row)
-                    .count() as u32
-            })
-            .max()
-            .unwrap_or(0)
+        if max as usize > A {
+            return Err(Error::Capacity {
+                table: Table::ActivePolygons,
+                needed: max as u32,
+                capacity: A as u32,
+            });
+        }
+        Ok(max as u32)
     }
 
     fn run_rows<K: RowSink<N>>(
@@ -519,8 +495,8 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         let top = top as u8;
         // Clockwise on the display: forward from the top runs down the right side.
         let (Some(left), Some(right)) = (
-            walk_from(ring, top, !p.clockwise, y, Side::Left, cfg),
-            walk_from(ring, top, p.clockwise, y, Side::Right, cfg),
+            walk_from(ring, top, !p.clockwise, y, cfg),
+            walk_from(ring, top, p.clockwise, y, cfg),
         ) else {
             return; // cannot happen: the outline covers row y
         };
@@ -544,10 +520,12 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             poly: i,
             color: p.color,
             cue: [N::ZERO; 4],
+            cue_last: [0; 2],
         };
         if let Some(c) = self.affine_cue() {
             a.cue[0..2].copy_from_slice(&edge_cue(&c, &a.plane, &left, y));
             a.cue[2..4].copy_from_slice(&edge_cue(&c, &a.plane, &right, y));
+            (a.cue_last[0], a.cue_last[1]) = (left.last, right.last);
         }
         if slot as usize == self.active.len() {
             let _ = self.active.push(a); // room checked above
@@ -597,34 +575,31 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 return false;
             }
             let p = &polygons[a.poly as usize];
-            let ring = Ring {
-                vertices,
-                polygon: p,
-            };
-            for (side, k) in [(Side::Left, 0), (Side::Right, 2)] {
-                let w = match side {
-                    Side::Left => &mut a.left,
-                    Side::Right => &mut a.right,
-                };
+            // Clockwise on the display: forward from the top runs down the right side.
+            for (right, w) in [(false, &mut a.left), (true, &mut a.right)] {
                 if w.last as i32 > y {
                     w.dda.step();
-                    if cue.is_some() {
-                        a.cue[k] = a.cue[k].add(a.cue[k + 1]);
-                    }
                     continue;
                 }
-                let forward = (side == Side::Right) == p.clockwise;
-                if let Some(next) = walk_from(ring, w.at, forward, y + 1, side, cfg) {
+                let ring = Ring {
+                    vertices,
+                    polygon: p,
+                };
+                if let Some(next) = walk_from(ring, w.at, right == p.clockwise, y + 1, cfg) {
                     *w = next;
                     *edges += 1;
-                    if let Some(c) = cue {
-                        let v = edge_cue(&c, &a.plane, &next, y + 1);
-                        a.cue[k..k + 2].copy_from_slice(&v);
-                    }
                 }
             }
+            if let Some(c) = cue {
+                step_cue(&c, a, y + 1);
+            }
             (a.xl, a.xr) = (a.left.dda.x, a.right.dda.x);
-            a.z_row = a.plane.at(0, y + 1);
+            // Exact formats step (the same bits); f32 evaluates, so no error accumulates.
+            a.z_row = if N::EXACT_STEPS {
+                a.z_row.step(a.plane.dzdy, 1)
+            } else {
+                a.plane.at(0, y + 1)
+            };
             *k = key(a.xl, slot);
             true
         });
@@ -666,7 +641,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 }
                 if a.xr > cur {
                     // Cannot fail: `open` has the active list's capacity.
-                    let _ = open.push((a.xr, slot));
+                    let _ = open.push(slot);
                     if let Some((p, until)) = front {
                         front = challenge(active, p, slot as usize, cur).map(|u| (p, until.min(u)));
                     }
@@ -677,13 +652,17 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 .get(k)
                 .map_or(w, |&s| active[s as u16 as usize].xl)
                 .min(w);
-            if front.is_none() && !open.is_empty() {
-                front = Some(match open.len() {
-                    // Alone: in front until it closes (the common case on a mesh).
-                    1 => (open.peek().map_or(0, |&(_, i)| i as usize), i32::MAX),
-                    _ => establish(active, open.iter().map(|&(_, i)| i as usize), cur),
-                });
-                stats.front_changes += 1;
+            if front.is_none() {
+                // Spans that closed behind the last front leave only now.
+                open.retain(|&i| active[i as usize].xr > cur);
+                if !open.is_empty() {
+                    front = Some(match open.len() {
+                        // Alone: in front until it closes (the common case on a mesh).
+                        1 => (open[0] as usize, i32::MAX),
+                        _ => establish(active, open.iter().map(|&i| i as usize), cur),
+                    });
+                    stats.front_changes += 1;
+                }
             }
             let next = match front {
                 Some((p, until)) => {
@@ -712,15 +691,13 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             if cur >= w {
                 break;
             }
-            while let Some(&(_, i)) = open.peek().filter(|&&(xr, _)| xr <= cur) {
-                open.pop();
-                if front.is_some_and(|(p, _)| p == i as usize) {
+            if let Some((p, until)) = front {
+                if active[p].xr <= cur {
+                    front = None; // closed
+                } else if until <= cur {
+                    stats.crossings += 1; // overtaken
                     front = None;
                 }
-            }
-            if front.is_some_and(|(_, until)| until <= cur) {
-                stats.crossings += 1;
-                front = None;
             }
         }
     }
@@ -748,10 +725,10 @@ fn walk_from<N: Copy, S: Slot>(
     mut at: u8,
     forward: bool,
     y: i32,
-    side: Side,
     cfg: &Config,
 ) -> Option<Walk> {
     let n = ring.len();
+    let (s, h) = (cfg.subpixel_bits as u32, cfg.half());
     for _ in 0..n {
         let next = if forward {
             (at as usize + 1) % n
@@ -762,18 +739,35 @@ fn walk_from<N: Copy, S: Slot>(
         if q.y < p.y {
             return None; // past the bottom
         }
-        if q.y > p.y {
-            if let Some(e) = edge_between(p, q, side, cfg).filter(|e| e.last_row as i32 >= y) {
-                return Some(Walk {
-                    dda: e.dda_at(y, cfg.subpixel_bits as u32),
-                    last: e.last_row,
-                    at: next as u8,
-                });
-            }
+        // The edge's last sample row; it covers `y` unless it ends above (the walk starts at
+        // an edge whose first row is at or above `y`).
+        let last = row_at_or_below(q.y, s, h).min(cfg.height as i32) - 1;
+        if q.y > p.y && last >= y {
+            return Some(Walk {
+                dda: Dda::between(p.x, p.y, q.x, q.y, y, s),
+                last: last as i16,
+                at: next as u8,
+            });
         }
         at = next as u8;
     }
     None
+}
+
+/// The affine cue one row down: each edge's factor stepped, or set up again where the edge
+/// changed.
+fn step_cue<N: Scalar>(c: &Cue<N>, a: &mut Active<N>, y: i32) {
+    for side in 0..2 {
+        let w = if side == 0 { a.left } else { a.right };
+        let k = 2 * side;
+        if a.cue_last[side] == w.last {
+            a.cue[k] = a.cue[k].add(a.cue[k + 1]);
+        } else {
+            let v = edge_cue(c, &a.plane, &w, y);
+            a.cue[k..k + 2].copy_from_slice(&v);
+            a.cue_last[side] = w.last;
+        }
+    }
 }
 
 /// Affine cue on one edge from row `y`: the exact factor where the edge crosses `y` and the
