@@ -186,6 +186,7 @@ struct Out {
     color: Rgb565,
     alpha: u8,
     face: u32,
+    area2: i64,
 }
 
 /// Hands over a polygon whose corners are slots of the buffer already (a face whose vertices
@@ -211,6 +212,7 @@ fn emit_indexed<N: Scalar>(
         color: out.color,
         alpha: out.alpha,
         face: out.face,
+        area2: out.area2,
     })
 }
 
@@ -244,6 +246,7 @@ fn emit_new<N: Scalar>(
         color: out.color,
         alpha: out.alpha,
         face: out.face,
+        area2: out.area2,
     })
 }
 
@@ -266,6 +269,7 @@ fn emit_unclaimed<N: Scalar>(
         color: out.color,
         alpha: out.alpha,
         face: out.face,
+        area2: out.area2,
     })
 }
 
@@ -403,12 +407,14 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ScreenScene<'_, N, I> {
             let no = no as u32;
             let (n, projected) =
                 corners_of(face, mesh.vertices.len(), base, buf, &mut corners, no)?;
-            let out = Out {
+            let mut out = Out {
                 color: face.color,
                 alpha: face.alpha,
                 face: no,
+                area2: 0,
             };
             if projected {
+                out.area2 = area_of(buf.as_slice(), &corners[..n]);
                 emit_indexed(buf, &mut corners[..n], out, f)?;
                 continue;
             }
@@ -423,6 +429,7 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ScreenScene<'_, N, I> {
                 for (d, p) in v.iter_mut().zip(&poly) {
                     *d = snap(p, s, no)?;
                 }
+                out.area2 = signed_area2(&v[..n]);
                 emit_unclaimed(buf, &v[..n], out, f)?;
                 continue;
             }
@@ -432,6 +439,7 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ScreenScene<'_, N, I> {
                 for (d, p) in v.iter_mut().zip(&poly) {
                     *d = snap(p, s, no)?;
                 }
+                out.area2 = signed_area2(&v[..poly.len()]);
                 emit_new(buf, &v[..poly.len()], out, f)?;
             }
         }
@@ -641,15 +649,19 @@ impl<N: Scalar> Projector<N> {
     /// `x = kx + round(kx · x / d)`, `y = ky − round(ky · y / d)`, and its depth.
     #[inline]
     fn screen(&self, v: &ClipV<N>) -> Option<RasterVertex<N>> {
-        let d = self.d(v);
-        let x = self.kx.checked_add(v.x.ratio(self.kx, d)?)?;
-        let y = self.ky.checked_sub(v.y.ratio(self.ky, d)?)?;
-        let z = if self.perspective && !self.linear_w {
-            self.depth_k.sub(self.k_near.div(v.w)?)
+        let inverse_w = self.perspective && !self.linear_w;
+        let k = inverse_w.then_some(self.k_near);
+        let (x, y, k_over_w) = v.x.project(v.y, self.d(v), self.kx, self.ky, k)?;
+        let z = if inverse_w {
+            self.depth_k.sub(k_over_w)
         } else {
             v.w.sub(self.near).mul(self.depth_lin)
         };
-        Some(RasterVertex { x, y, z })
+        Some(RasterVertex {
+            x: self.kx.checked_add(x)?,
+            y: self.ky.checked_sub(y)?,
+            z,
+        })
     }
 }
 
@@ -791,19 +803,49 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
                 };
                 N::face_normal(v(0), v(1), v(2))
             };
+            let count = mesh.vertices.len();
             for (k, face) in mesh.faces.iter().enumerate() {
                 let this = no;
                 no += 1;
-                let (n, projected) =
-                    corners_of(face, mesh.vertices.len(), base, buf, &mut corners, this)?;
+                // A triangle whose corners all projected (nearly every face of a mesh in
+                // view): three index loads, three slot loads, its winding.
+                if let (Some(b), [i0, i1, i2]) = (base, face.indices) {
+                    let (i0, i1, i2) = (i0.index(), i1.index(), i2.index());
+                    let slots = buf.as_slice();
+                    if let (Some(v0), Some(v1), Some(v2)) = (
+                        slots.get(b + i0).filter(|_| i0 < count),
+                        slots.get(b + i1).filter(|_| i1 < count),
+                        slots.get(b + i2).filter(|_| i2 < count),
+                    ) {
+                        if v0.x != UNPROJECTED && v1.x != UNPROJECTED && v2.x != UNPROJECTED {
+                            let area2 = (v1.x as i64 - v0.x as i64) * (v2.y as i64 - v0.y as i64)
+                                - (v2.x as i64 - v0.x as i64) * (v1.y as i64 - v0.y as i64);
+                            if dropped(area2, cfg) {
+                                continue;
+                            }
+                            let out = Out {
+                                color: lighting.color(face.color, normal(k, face)),
+                                alpha: face.alpha,
+                                face: this,
+                                area2,
+                            };
+                            let mut c = [(b + i0) as u32, (b + i1) as u32, (b + i2) as u32];
+                            emit_indexed(buf, &mut c, out, f)?;
+                            continue;
+                        }
+                    }
+                }
+                let (n, projected) = corners_of(face, count, base, buf, &mut corners, this)?;
                 if projected {
-                    if dropped(area_of(buf.as_slice(), &corners[..n]), cfg) {
+                    let area2 = area_of(buf.as_slice(), &corners[..n]);
+                    if dropped(area2, cfg) {
                         continue;
                     }
                     let out = Out {
                         color: lighting.color(face.color, normal(k, face)),
                         alpha: face.alpha,
                         face: this,
+                        area2,
                     };
                     emit_indexed(buf, &mut corners[..n], out, f)?;
                     continue;
@@ -831,13 +873,15 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
                     *d = proj.screen(c).ok_or(Error::NonFinite { face: this })?;
                 }
                 let v = &v[..clip.len()];
-                if dropped(signed_area2(v), cfg) {
+                let area2 = signed_area2(v);
+                if dropped(area2, cfg) {
                     continue;
                 }
                 let out = Out {
                     color: lighting.color(face.color, normal(k, face)),
                     alpha: face.alpha,
                     face: this,
+                    area2,
                 };
                 if unclipped {
                     emit_unclaimed(buf, v, out, f)?;

@@ -115,6 +115,24 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     /// Projection uses it to go from clip space straight to sub-pixels. `None` if `d ≤ 0`, the
     /// result does not fit an `i32`, or an input is not finite.
     fn ratio(self, k: i32, d: Self) -> Option<i32>;
+    /// The three quotients of a perspective projection by one divisor `d > 0`:
+    /// `(self.ratio(kx, d), y.ratio(ky, d), k.div(d))`, the last only when `k` is given.
+    /// Fixed point: `d`'s reciprocal once, then a multiply and a correction each (exact,
+    /// the same results). `None` where one of them would be.
+    fn project(
+        self,
+        y: Self,
+        d: Self,
+        kx: i32,
+        ky: i32,
+        k: Option<Self>,
+    ) -> Option<(i32, i32, Self)> {
+        let z = match k {
+            Some(k) => k.div(d)?,
+            None => Self::ZERO,
+        };
+        Some((self.ratio(kx, d)?, y.ratio(ky, d)?, z))
+    }
     /// `row[0]·p[0] + row[1]·p[1] + row[2]·p[2] + row[3]`: one row of an affine transform.
     /// Fixed point: the products are summed exactly (64-bit and wider) and rounded once, to
     /// nearest, so the result is within half a unit of the last place whatever the partial
@@ -290,11 +308,13 @@ fn plane_i64<N: Copy>(
             let (a, b, c) = if c < 0 { (-a, -b, -c) } else { (a, b, c) };
             if a.unsigned_abs() < 1 << 39 && b.unsigned_abs() < 1 << 39 {
                 let num = -(a * (half - p0.x as i64) + b * (half - p0.y as i64));
-                let z_ref = (bits(p0.z) as i64).wrapping_add(div::div_round(num, c));
+                // Three quotients by one divisor: its reciprocal once.
+                let c = div::Recip::new(c as u64);
+                let z_ref = (bits(p0.z) as i64).wrapping_add(c.div_round(num));
                 return Some(Some((
                     z_ref as i32,
-                    sat_i64(div::div_round(-(a << s), c)),
-                    sat_i64(div::div_round(-(b << s), c)),
+                    sat_i64(c.div_round(-(a << s))),
+                    sat_i64(c.div_round(-(b << s))),
                 )));
             }
         }
@@ -323,12 +343,12 @@ fn plane_i64<N: Copy>(
     if !(fits(num) && fits(ax) && fits(by)) {
         return None;
     }
-    let z_ref = z0.wrapping_add(div::div_round(num, c));
-    let sat = |v: i64| v.clamp(i32::MIN as i64, i32::MAX as i64) as i32;
+    let c = div::Recip::new(c as u64);
+    let z_ref = z0.wrapping_add(c.div_round(num));
     Some(Some((
         z_ref as i32, // wraps: exact modulo 2^32, like every later step
-        sat(div::div_round(-ax, c)),
-        sat(div::div_round(-by, c)),
+        sat_i64(c.div_round(-ax)),
+        sat_i64(c.div_round(-by)),
     )))
 }
 
@@ -428,6 +448,29 @@ macro_rules! impl_fixed {
                     return None;
                 }
                 i32::try_from(div::div_round(self.to_bits() as i64 * k as i64, d as i64)).ok()
+            }
+            #[inline]
+            fn project(
+                self,
+                y: Self,
+                d: Self,
+                kx: i32,
+                ky: i32,
+                k: Option<Self>,
+            ) -> Option<(i32, i32, Self)> {
+                let d = d.to_bits();
+                if d <= 0 {
+                    return None;
+                }
+                let r = div::Recip::new(d as u64);
+                let q = |n: i64| i32::try_from(r.div_round(n)).ok();
+                let x = q(self.to_bits() as i64 * kx as i64)?;
+                let y = q(y.to_bits() as i64 * ky as i64)?;
+                let z = match k {
+                    Some(k) => $t::from_bits(q((k.to_bits() as i64) << $t::FRAC_NBITS)?),
+                    None => Self::ZERO,
+                };
+                Some((x, y, z))
             }
             #[inline]
             fn affine_row(row: &[Self; 4], p: [Self; 3]) -> Option<Self> {

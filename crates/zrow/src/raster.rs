@@ -179,7 +179,10 @@ fn div_ceil(a: i64, b: i64) -> i64 {
 /// shift: `−floor((h − y)/2^S)`.
 #[inline]
 pub(crate) fn row_at_or_below(y: i32, s: u32, h: i32) -> i32 {
-    (-((h as i64 - y as i64) >> s)) as i32
+    match h.checked_sub(y) {
+        Some(d) => -(d >> s),
+        None => (-((h as i64 - y as i64) >> s)) as i32,
+    }
 }
 
 impl Edge {
@@ -255,6 +258,15 @@ pub struct Dda {
 }
 
 impl Dda {
+    /// A walk at column 0 that stays there (a placeholder).
+    pub const ZERO: Dda = Dda {
+        x: 0,
+        r: 0,
+        qs: 0,
+        rs: 0,
+        den: 0,
+    };
+
     /// Where the edge crosses the current row's sample line, in pixel columns (pixel `i`'s
     /// centre is `i`): `x − r/den`, rounded to the format.
     pub fn crossing<N: Scalar>(&self) -> N {
@@ -279,6 +291,26 @@ impl Dda {
     /// sample row `row`: [`Edge::dda_at`] without building the edge.
     #[inline]
     pub fn between(x0: i32, y0: i32, x1: i32, y1: i32, row: i32, s: u32) -> Dda {
+        // The fast path of `Edge::dda_at`, its conditions folded into unsigned comparisons.
+        let (h, mask) = (1i32 << s >> 1, (1i32 << s) - 1);
+        let (dx, dy) = (x1.wrapping_sub(x0), y1.wrapping_sub(y0));
+        let t = (row << s).wrapping_add(h).wrapping_sub(y0);
+        let small = |v: i32| (v.wrapping_add(1 << 21) as u32) < 1 << 22;
+        if (t as u32) < 512 && small(dx) && small(x0) && dy > 0 && dy < 1 << 21 && s <= 8 {
+            let den = dy << s;
+            let qs = dx.div_euclid(dy);
+            let rs = (dx - qs * dy) << s;
+            let x0h = x0 - h;
+            let num = (x0h & mask) * dy + t * dx;
+            let q = -((-num).div_euclid(den));
+            return Dda {
+                x: (x0h >> s) + q,
+                r: q * den - num,
+                qs,
+                rs,
+                den,
+            };
+        }
         Edge {
             first_row: 0,
             last_row: 0,
@@ -289,7 +321,7 @@ impl Dda {
             poly: 0,
             side: Side::Left,
         }
-        .dda_at(row, s)
+        .dda_at_wide(row, s)
     }
 
     /// Moves to the next row.
@@ -378,6 +410,22 @@ pub fn outline_of<'a, T: Copy + 'a>(
             a + p.x as i64 * q.y as i64 - q.x as i64 * p.y as i64
         })
     };
+    outline_with_area(n, v, area, cfg, face)
+}
+
+/// [`outline_of`] with the doubled signed area known ([`signed_area2`] of the same vertices,
+/// as [`crate::scene::Polygon::area2`] carries it).
+#[inline]
+pub fn outline_with_area<'a, T: Copy + 'a>(
+    n: usize,
+    v: impl Fn(usize) -> &'a RasterVertex<T>,
+    area: i64,
+    cfg: &Config,
+    face: u32,
+) -> Result<Option<Outline>, Error> {
+    if n < 3 {
+        return Ok(None);
+    }
     if area == 0 || (cfg.cull == Cull::Back && area > 0) {
         return Ok(None);
     }

@@ -44,7 +44,7 @@ use crate::geometry::shade;
 use crate::method::{FrameStats, Renderer};
 use crate::number::{DepthPlane, Scalar};
 use crate::raster::{
-    canonical, outline_of, row_at_or_below, Config, Dda, RasterVertex, MAX_POLYGON_VERTICES,
+    canonical, outline_with_area, row_at_or_below, Config, Dda, RasterVertex, MAX_POLYGON_VERTICES,
 };
 use crate::requirements::Requirements;
 use crate::scene::{Scene, VertexBuffer, INDEXED_CORNERS};
@@ -117,6 +117,14 @@ struct Ring<'a, N, S> {
     polygon: &'a Polygon<S>,
 }
 
+impl Walk {
+    const ZERO: Walk = Walk {
+        dda: Dda::ZERO,
+        last: 0,
+        at: 0,
+    };
+}
+
 impl<N: Copy, S: Slot> Ring<'_, N, S> {
     fn len(&self) -> usize {
         self.polygon.len as usize
@@ -148,7 +156,7 @@ impl<N: Copy, S: Slot> Ring<'_, N, S> {
 }
 
 /// One side of an active polygon: the edge crossing the current row, walked exactly.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug)]
 struct Walk {
     dda: Dda,
     /// Last row of this edge.
@@ -205,7 +213,9 @@ pub struct Scanline<
     polygons: Vec<Polygon<S>, P>,
     /// Polygon numbers by first row (stable: scene order within a row).
     order: Vec<u16, P>,
-    active: Vec<Active<N>, A>,
+    /// The active list's entries, by slot (slots `used..` never used this frame).
+    active: [Active<N>; A],
+    used: usize,
     /// Free slots of `active`.
     free: Vec<u16, A>,
     /// The occupied slots of `active` by left end this row, as sort keys: [`key`].
@@ -253,7 +263,26 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             }; V],
             polygons: Vec::new(),
             order: Vec::new(),
-            active: Vec::new(),
+            active: [Active {
+                left: Walk::ZERO,
+                right: Walk::ZERO,
+                plane: DepthPlane {
+                    z_ref: N::ZERO,
+                    dzdx: N::ZERO,
+                    dzdy: N::ZERO,
+                    i_ref: 0,
+                    j_ref: 0,
+                },
+                z_row: N::ZERO,
+                xl: 0,
+                xr: 0,
+                last_row: 0,
+                poly: 0,
+                color: Rgb565::BLACK,
+                cue: [N::ZERO; 4],
+                cue_last: [0; 2],
+            }; A],
+            used: 0,
             free: Vec::new(),
             sorted: Vec::new(),
             open: Vec::new(),
@@ -292,7 +321,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         cfg.validate(W)?;
         self.cue = Cue::for_frame(scene, cfg)?;
         self.polygons.clear();
-        self.active.clear();
+        self.used = 0;
         self.free.clear();
         self.sorted.clear();
         let (mut polys, mut uncached) = (0u32, false);
@@ -301,7 +330,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         scene.polygons(cfg, &mut buf, &mut |poly| {
             let n = poly.corners.len();
             let at = |k: usize| &poly.vertices[poly.corners[k] as usize];
-            let Some(o) = outline_of(n, at, cfg, poly.face)? else {
+            let Some(o) = outline_with_area(n, at, poly.area2, cfg, poly.face)? else {
                 return Ok(());
             };
             polys += 1;
@@ -476,63 +505,60 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             polygon: &p,
         };
         let s = cfg.subpixel_bits as u32;
-        let n = ring.len();
-        let top = (0..n)
-            .min_by_key(|&k| (ring.get(k).y, ring.get(k).x))
-            .unwrap_or(0);
-        // The plane from the vertices in canonical order (top-left vertex first, clockwise on
-        // the display), so the same polygon always gets the same bits.
-        let plane = if n == 3 {
-            let step = if p.clockwise { 1 } else { 2 };
-            let v = |k: usize| *ring.get((top + k * step) % 3);
-            N::depth_plane(&[v(0), v(1), v(2)], s)
+        // The top-left vertex, and the plane from the vertices in canonical order (from it,
+        // clockwise on the display), so the same polygon always gets the same bits.
+        let (top, plane) = if ring.len() == 3 {
+            let v = [*ring.get(0), *ring.get(1), *ring.get(2)];
+            let before = |a: usize, b: usize| (v[a].y, v[a].x) <= (v[b].y, v[b].x);
+            let top = match (before(0, 1), before(0, 2), before(1, 2)) {
+                (true, true, _) => 0,
+                (false, _, true) => 1,
+                _ => 2,
+            };
+            let (f, g) = if p.clockwise { (1, 2) } else { (2, 1) };
+            let ordered = [v[top], v[(top + f) % 3], v[(top + g) % 3]];
+            (top, N::depth_plane(&ordered, s))
         } else {
-            ring.ordered(|v| N::depth_plane(v, s))
+            let top = (0..ring.len())
+                .min_by_key(|&k| (ring.get(k).y, ring.get(k).x))
+                .unwrap_or(0);
+            (top, ring.ordered(|v| N::depth_plane(v, s)))
         };
         let Some(plane) = plane else {
             return; // cannot happen: the outline has a nonzero area
         };
-        let top = top as u8;
         // Clockwise on the display: forward from the top runs down the right side.
         let (Some(left), Some(right)) = (
-            walk_from(ring, top, !p.clockwise, y, cfg),
-            walk_from(ring, top, p.clockwise, y, cfg),
+            walk_from(ring, top as u8, !p.clockwise, y, cfg),
+            walk_from(ring, top as u8, p.clockwise, y, cfg),
         ) else {
             return; // cannot happen: the outline covers row y
         };
         self.edges += 2;
-        let Some(slot) = self.free.pop().or(if self.active.len() < A {
-            Some(self.active.len() as u16)
-        } else {
-            None
+        let Some(slot) = self.free.pop().or_else(|| {
+            (self.used < A).then(|| {
+                self.used += 1;
+                (self.used - 1) as u16
+            })
         }) else {
             return; // cannot happen: `max_active` checked the capacity for every row
         };
-        let xl = left.dda.x;
-        let mut a = Active {
-            left,
-            right,
-            plane,
-            z_row: plane.at(0, y),
-            xl,
-            xr: right.dda.x,
-            last_row: p.last_row,
-            poly: i,
-            color: p.color,
-            cue: [N::ZERO; 4],
-            cue_last: [0; 2],
-        };
-        if let Some(c) = self.affine_cue() {
+        let cue = self.affine_cue();
+        let a = &mut self.active[slot as usize];
+        a.left = left;
+        a.right = right;
+        a.plane = plane;
+        a.z_row = plane.at(0, y);
+        (a.xl, a.xr) = (left.dda.x, right.dda.x);
+        a.last_row = p.last_row;
+        a.poly = i;
+        a.color = p.color;
+        if let Some(c) = cue {
             a.cue[0..2].copy_from_slice(&edge_cue(&c, &a.plane, &left, y));
             a.cue[2..4].copy_from_slice(&edge_cue(&c, &a.plane, &right, y));
             (a.cue_last[0], a.cue_last[1]) = (left.last, right.last);
         }
-        if slot as usize == self.active.len() {
-            let _ = self.active.push(a); // room checked above
-        } else {
-            self.active[slot as usize] = a;
-        }
-        let _ = self.sorted.push(key(xl, slot)); // at most A slots are occupied
+        let _ = self.sorted.push(key(a.xl, slot)); // at most A slots are occupied
     }
 
     /// The frame's cue if it is interpolated affinely (down edges and across spans).
@@ -625,78 +651,84 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         want_depth: bool,
         stats: &mut FrameStats,
     ) {
+        /// No front polygon.
+        const NONE: usize = usize::MAX;
         let w = width as i32;
         let affine = self.affine_cue().is_some();
-        let (active, sorted, open) = (&self.active, &self.sorted, &mut self.open);
+        let (active, sorted, open) = (&self.active, &self.sorted[..], &mut self.open);
         open.clear();
         let (mut cur, mut k) = (0i32, 0usize);
-        // The front polygon (its slot) and the first column where it may no longer be in front.
-        let mut front: Option<(usize, i32)> = None;
+        // The front polygon: its slot, its index in `open`, where its span ends, and the first
+        // column where another open polygon may overtake it.
+        let (mut front, mut at, mut front_xr, mut until) = (NONE, 0usize, 0i32, i32::MAX);
         loop {
+            // Spans opening at or before `cur` (left ends read from the keys).
             while let Some(&key) = sorted.get(k) {
-                let slot = key as u16;
-                let a = &active[slot as usize];
-                if a.xl > cur {
+                if key_left(key) > cur {
                     break;
                 }
-                if a.xr > cur {
+                k += 1;
+                let slot = key as u16 as usize;
+                if active[slot].xr > cur {
                     // Cannot fail: `open` has the active list's capacity.
-                    let _ = open.push(slot);
-                    if let Some((p, until)) = front {
-                        front = challenge(active, p, slot as usize, cur).map(|u| (p, until.min(u)));
+                    let _ = open.push(slot as u16);
+                    if front != NONE {
+                        match challenge(active, front, slot, cur) {
+                            Some(u) => until = until.min(u),
+                            None => front = NONE, // the newcomer is in front
+                        }
                     }
                 }
-                k += 1;
             }
-            let next_start = sorted
-                .get(k)
-                .map_or(w, |&s| active[s as u16 as usize].xl)
-                .min(w);
-            if front.is_none() {
-                // Spans that closed behind the last front leave only now.
-                open.retain(|&i| active[i as usize].xr > cur);
-                if !open.is_empty() {
-                    front = Some(match open.len() {
+            let next_start = sorted.get(k).map_or(w, |&key| key_left(key)).min(w);
+            if front == NONE {
+                // Spans that closed behind the last front leave only now (a front leaves
+                // `open` as it closes, so on a mesh `open` is the newcomer alone).
+                if open.len() > 1 || open.first().is_some_and(|&i| active[i as usize].xr <= cur) {
+                    open.retain(|&i| active[i as usize].xr > cur);
+                }
+                if let Some(&only) = open.first() {
+                    (front, at, until) = if open.len() == 1 {
                         // Alone: in front until it closes (the common case on a mesh).
-                        1 => (open[0] as usize, i32::MAX),
-                        _ => establish(active, open.iter().map(|&i| i as usize), cur),
-                    });
+                        (only as usize, 0, i32::MAX)
+                    } else {
+                        establish(active, open, cur)
+                    };
+                    front_xr = active[front].xr;
                     stats.front_changes += 1;
                 }
             }
-            let next = match front {
-                Some((p, until)) => {
-                    let a = &active[p];
-                    let next = next_start.min(a.xr).min(until).min(w);
-                    let (x0, x1) = (cur as usize, next as usize);
-                    fill_run(&mut self.intensity[x0..x1], a.color);
-                    if want_depth {
-                        fill_depth(&mut self.depth[x0..x1], a, cur);
-                    }
-                    if affine {
-                        cue_span(&mut self.intensity, a, cur, next);
-                    }
-                    next
+            let next = if front != NONE {
+                let a = &active[front];
+                let next = next_start.min(front_xr).min(until);
+                let (x0, x1) = (cur as usize, next as usize);
+                fill_run(&mut self.intensity[x0..x1], a.color);
+                if want_depth {
+                    fill_depth(&mut self.depth[x0..x1], a, cur);
                 }
-                None => {
-                    let (x0, x1) = (cur as usize, next_start as usize);
-                    fill_run(&mut self.intensity[x0..x1], background);
-                    if want_depth {
-                        self.depth[x0..x1].fill(N::MAX);
-                    }
-                    next_start
+                if affine {
+                    cue_span(&mut self.intensity, a, cur, next);
                 }
+                next
+            } else {
+                let (x0, x1) = (cur as usize, next_start as usize);
+                fill_run(&mut self.intensity[x0..x1], background);
+                if want_depth {
+                    self.depth[x0..x1].fill(N::MAX);
+                }
+                next_start
             };
             cur = next;
             if cur >= w {
                 break;
             }
-            if let Some((p, until)) = front {
-                if active[p].xr <= cur {
-                    front = None; // closed
+            if front != NONE {
+                if front_xr <= cur {
+                    open.swap_remove(at); // closed
+                    front = NONE;
                 } else if until <= cur {
                     stats.crossings += 1; // overtaken
-                    front = None;
+                    front = NONE;
                 }
             }
         }
@@ -722,26 +754,29 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
 /// position `at` (forward or backward) downwards; `None` if the side ends above `y`.
 fn walk_from<N: Copy, S: Slot>(
     ring: Ring<'_, N, S>,
-    mut at: u8,
+    at: u8,
     forward: bool,
     y: i32,
     cfg: &Config,
 ) -> Option<Walk> {
     let n = ring.len();
-    let (s, h) = (cfg.subpixel_bits as u32, cfg.half());
+    let (s, h, height) = (cfg.subpixel_bits as u32, cfg.half(), cfg.height as i32);
+    let mut at = at as usize;
+    let mut p = *ring.get(at);
     for _ in 0..n {
-        let next = if forward {
-            (at as usize + 1) % n
-        } else {
-            (at as usize + n - 1) % n
+        let next = match forward {
+            true if at + 1 == n => 0,
+            true => at + 1,
+            false if at == 0 => n - 1,
+            false => at - 1,
         };
-        let (p, q) = (ring.get(at as usize), ring.get(next));
+        let q = *ring.get(next);
         if q.y < p.y {
             return None; // past the bottom
         }
         // The edge's last sample row; it covers `y` unless it ends above (the walk starts at
         // an edge whose first row is at or above `y`).
-        let last = row_at_or_below(q.y, s, h).min(cfg.height as i32) - 1;
+        let last = row_at_or_below(q.y, s, h).min(height) - 1;
         if q.y > p.y && last >= y {
             return Some(Walk {
                 dda: Dda::between(p.x, p.y, q.x, q.y, y, s),
@@ -749,7 +784,7 @@ fn walk_from<N: Copy, S: Slot>(
                 at: next as u8,
             });
         }
-        at = next as u8;
+        (at, p) = (next, q);
     }
     None
 }
@@ -801,6 +836,12 @@ fn edge_cue<N: Scalar>(c: &Cue<N>, plane: &DepthPlane<N>, w: &Walk, y: i32) -> [
 #[inline]
 fn key(xl: i32, slot: u16) -> u32 {
     ((xl + 0x8000) as u32) << 16 | slot as u32
+}
+
+/// The left end a key holds.
+#[inline]
+fn key_left(key: u32) -> i32 {
+    (key >> 16) as i32 - 0x8000
 }
 
 /// Depth of an active polygon at the centre of pixel `x` of the current row (in fixed point
@@ -879,27 +920,31 @@ fn challenge<N: Scalar>(active: &[Active<N>], p: usize, q: usize, x: i32) -> Opt
     Some(hi)
 }
 
-/// The polygon in front at `x` among `open` (not empty), and the first column where another
-/// open polygon overtakes it.
-fn establish<N: Scalar>(
-    active: &[Active<N>],
-    open: impl Iterator<Item = usize> + Clone,
-    x: i32,
-) -> (usize, i32) {
-    let p = winner(active, open.clone(), x);
+/// The polygon in front at `x` among the slots `open` (not empty): its slot, its index in
+/// `open`, and the first column where another open polygon overtakes it.
+fn establish<N: Scalar>(active: &[Active<N>], open: &[u16], x: i32) -> (usize, usize, i32) {
+    let at = winner(active, open.iter().map(|&i| i as usize), x);
+    let p = open[at] as usize;
     let until = open
+        .iter()
+        .map(|&q| q as usize)
         .filter(|&q| q != p)
         .filter_map(|q| challenge(active, p, q, x))
         .min()
         .unwrap_or(i32::MAX);
-    (p, until)
+    (p, at, until)
 }
 
-/// The visible polygon at column `x` among `open` (not empty): least depth, then first in the
-/// scene.
-fn winner<N: Scalar>(active: &[Active<N>], mut open: impl Iterator<Item = usize>, x: i32) -> usize {
-    let first = open.next().unwrap_or(0);
-    open.fold(first, |b, i| if beats(active, i, b, x) { i } else { b })
+/// The index, in `open` (not empty), of the visible polygon at column `x`: least depth, then
+/// first in the scene.
+fn winner<N: Scalar>(active: &[Active<N>], open: impl Iterator<Item = usize>, x: i32) -> usize {
+    let mut best: Option<(usize, usize)> = None; // (index, slot)
+    for (i, slot) in open.enumerate() {
+        if best.is_none_or(|(_, b)| beats(active, slot, b, x)) {
+            best = Some((i, slot));
+        }
+    }
+    best.map_or(0, |(i, _)| i)
 }
 
 /// RAM the scan-line renderer (`u16` slots) needs for a scene with these requirements, in

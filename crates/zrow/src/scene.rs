@@ -329,6 +329,9 @@ pub struct Polygon<'a, N> {
     /// Whether `vertices` is the frame's buffer, so that a renderer may keep `corners` for the
     /// rest of the frame (else it must copy what it keeps).
     pub cached: bool,
+    /// Twice its signed area on the sub-pixel grid, exact (positive: clockwise on the display),
+    /// as [`crate::raster::signed_area2`] gives it: geometry has it from culling.
+    pub area2: i64,
     /// Its colour after shading.
     pub color: Rgb565,
     /// Its opacity (255 = opaque), from [`Face::alpha`].

@@ -60,6 +60,66 @@ fn divlu(u1: u32, u0: u32, v: u32) -> (u32, u32) {
     ((q1 << 16) | q0, r)
 }
 
+/// The high 64 bits of `a·b`, from four 32 × 32-bit products.
+#[inline]
+fn mulhi(a: u64, b: u64) -> u64 {
+    let (a0, a1) = (a & 0xffff_ffff, a >> 32);
+    let (b0, b1) = (b & 0xffff_ffff, b >> 32);
+    let (p00, p01, p10, p11) = (a0 * b0, a0 * b1, a1 * b0, a1 * b1);
+    let mid = (p00 >> 32) + (p01 & 0xffff_ffff) + (p10 & 0xffff_ffff);
+    p11 + (p01 >> 32) + (p10 >> 32) + (mid >> 32)
+}
+
+/// Division by one positive divisor many times, exactly: the divisor's reciprocal once
+/// (`floor((2^64 − 1)/d)`, two hardware divisions), then per quotient a high multiply, which
+/// is at most two below the quotient, and a correction by the remainder. A divisor beyond 32
+/// bits divides the plain way.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Recip {
+    d: u64,
+    /// 0 when `d` does not fit 32 bits.
+    inv: u64,
+}
+
+impl Recip {
+    /// The reciprocal of `d ≥ 1`.
+    #[inline]
+    pub(crate) fn new(d: u64) -> Self {
+        let inv = match u32::try_from(d) {
+            Ok(d32) if d32 > 0 => divmod_u64_u32(u64::MAX, d32).0,
+            _ => 0,
+        };
+        Recip { d, inv }
+    }
+
+    /// `(floor(n / d), n mod d)`.
+    #[inline]
+    pub(crate) fn divmod(&self, n: u64) -> (u64, u64) {
+        if self.inv == 0 {
+            return (n / self.d, n % self.d);
+        }
+        let mut q = mulhi(n, self.inv);
+        let mut r = n - q * self.d;
+        while r >= self.d {
+            q += 1;
+            r -= self.d;
+        }
+        (q, r)
+    }
+
+    /// `n / d` rounded to nearest, ties away from zero: [`div_round`] by this divisor.
+    #[inline]
+    pub(crate) fn div_round(&self, n: i64) -> i64 {
+        let (q, r) = self.divmod(n.unsigned_abs());
+        let q = q + (r >= self.d - r) as u64;
+        if n < 0 {
+            (q as i64).wrapping_neg()
+        } else {
+            q as i64
+        }
+    }
+}
+
 /// `n / d` rounded to nearest, ties away from zero, for `d ≠ 0`. Two hardware divisions when
 /// `|d|` fits 32 bits, a library division otherwise. Wraps only where the quotient itself does
 /// not fit (`i64::MIN / ±1`), which callers never ask for.
@@ -130,6 +190,34 @@ mod tests {
                 1 << 63,
             ] {
                 assert_eq!(divmod_u64_u32(n, d), (n / d as u64, (n % d as u64) as u32));
+            }
+        }
+    }
+
+    #[test]
+    fn reciprocal_division_equals_the_native_one() {
+        let mut seed = 0x7f4a_7c15_9e37_79b9u64;
+        for _ in 0..100_000 {
+            let d = match rng(&mut seed) % 4 {
+                0 => 1 + rng(&mut seed) % 7,
+                1 => u32::MAX as u64 - rng(&mut seed) % 3,
+                2 => rng(&mut seed) >> (rng(&mut seed) % 64) | 1,
+                _ => (rng(&mut seed) as u32 >> (rng(&mut seed) % 32)).max(1) as u64,
+            };
+            let r = Recip::new(d);
+            for n in [
+                rng(&mut seed) >> (rng(&mut seed) % 64),
+                u64::MAX,
+                d - 1,
+                d,
+                d.wrapping_mul(3),
+                0,
+            ] {
+                assert_eq!(r.divmod(n), (n / d, n % d), "{n} / {d}");
+                let s = (n >> 1) as i64;
+                for v in [s, -s].into_iter().filter(|_| d <= i64::MAX as u64) {
+                    assert_eq!(r.div_round(v), div_round(v, d as i64), "{v} / {d}");
+                }
             }
         }
     }
