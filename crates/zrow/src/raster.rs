@@ -600,6 +600,8 @@ mod tests {
                     e.dda_at_wide(row, s),
                     "{e:?} row {row} s {s}"
                 );
+                let (x1, y1) = (x0 + dx, y0 + dy);
+                assert_eq!(Dda::between(x0, y0, x1, y1, row, s), e.dda_at_wide(row, s));
             }
         }
         assert!(fast > 20_000, "the fast path ran {fast} times");
