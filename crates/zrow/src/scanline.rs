@@ -171,10 +171,14 @@ struct Walk {
 struct Active<N> {
     left: Walk,
     right: Walk,
+    /// The depth plane, once something needed it ([`Planes::ensure`]): most polygons of a mesh
+    /// never meet another in depth, and are drawn without one.
     plane: DepthPlane<N>,
     /// The plane's depth at column 0 of the current row: a depth in this row is then one
     /// multiply-add, [`depth_at`].
     z_row: N,
+    /// Whether `plane` and `z_row` are set.
+    planed: bool,
     /// This row's span: `xl..xr` (unclamped; may be empty).
     xl: i32,
     xr: i32,
@@ -274,6 +278,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                     j_ref: 0,
                 },
                 z_row: N::ZERO,
+                planed: false,
                 xl: 0,
                 xr: 0,
                 last_row: 0,
@@ -471,10 +476,11 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                     break;
                 }
                 cursor += 1;
-                self.activate(i, y, cfg);
+                self.activate(i, y, cfg, want_depth);
             }
             self.sort_active();
-            self.resolve_row(width, cfg.background, want_depth, stats);
+            let s = cfg.subpixel_bits as u32;
+            self.resolve_row(y, s, width, cfg.background, want_depth, stats);
             let depth: &[N] = if want_depth {
                 Cue::shade_row_if_perspective(
                     &self.cue,
@@ -498,35 +504,13 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
 
     /// Polygon `i` enters the active list on row `y`, its first: its depth plane, and its two
     /// edges found down each side from its top vertex.
-    fn activate(&mut self, i: u16, y: i32, cfg: &Config) {
+    fn activate(&mut self, i: u16, y: i32, cfg: &Config, want_depth: bool) {
         let p = self.polygons[i as usize];
         let ring = Ring {
             vertices: &self.vertices,
             polygon: &p,
         };
-        let s = cfg.subpixel_bits as u32;
-        // The top-left vertex, and the plane from the vertices in canonical order (from it,
-        // clockwise on the display), so the same polygon always gets the same bits.
-        let (top, plane) = if ring.len() == 3 {
-            let v = [*ring.get(0), *ring.get(1), *ring.get(2)];
-            let before = |a: usize, b: usize| (v[a].y, v[a].x) <= (v[b].y, v[b].x);
-            let top = match (before(0, 1), before(0, 2), before(1, 2)) {
-                (true, true, _) => 0,
-                (false, _, true) => 1,
-                _ => 2,
-            };
-            let (f, g) = if p.clockwise { (1, 2) } else { (2, 1) };
-            let ordered = [v[top], v[(top + f) % 3], v[(top + g) % 3]];
-            (top, N::depth_plane(&ordered, s))
-        } else {
-            let top = (0..ring.len())
-                .min_by_key(|&k| (ring.get(k).y, ring.get(k).x))
-                .unwrap_or(0);
-            (top, ring.ordered(|v| N::depth_plane(v, s)))
-        };
-        let Some(plane) = plane else {
-            return; // cannot happen: the outline has a nonzero area
-        };
+        let top = top_of(&ring);
         // Clockwise on the display: forward from the top runs down the right side.
         let (Some(left), Some(right)) = (
             walk_from(ring, top as u8, !p.clockwise, y, cfg),
@@ -547,12 +531,20 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         let a = &mut self.active[slot as usize];
         a.left = left;
         a.right = right;
-        a.plane = plane;
-        a.z_row = plane.at(0, y);
+        a.planed = false;
         (a.xl, a.xr) = (left.dda.x, right.dda.x);
         a.last_row = p.last_row;
         a.poly = i;
         a.color = p.color;
+        if want_depth || cue.is_some() {
+            let planes = Planes {
+                vertices: &self.vertices,
+                polygons: &self.polygons,
+                s: cfg.subpixel_bits as u32,
+                y,
+            };
+            planes.ensure(a);
+        }
         if let Some(c) = cue {
             a.cue[0..2].copy_from_slice(&edge_cue(&c, &a.plane, &left, y));
             a.cue[2..4].copy_from_slice(&edge_cue(&c, &a.plane, &right, y));
@@ -621,11 +613,13 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             }
             (a.xl, a.xr) = (a.left.dda.x, a.right.dda.x);
             // Exact formats step (the same bits); f32 evaluates, so no error accumulates.
-            a.z_row = if N::EXACT_STEPS {
-                a.z_row.step(a.plane.dzdy, 1)
-            } else {
-                a.plane.at(0, y + 1)
-            };
+            if a.planed {
+                a.z_row = if N::EXACT_STEPS {
+                    a.z_row.step(a.plane.dzdy, 1)
+                } else {
+                    a.plane.at(0, y + 1)
+                };
+            }
             *k = key(a.xl, slot);
             true
         });
@@ -646,6 +640,8 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
     /// The open polygons sit in a min-heap on their span's end (retiring costs O(log n)).
     fn resolve_row(
         &mut self,
+        y: i32,
+        s: u32,
         width: usize,
         background: Rgb565,
         want_depth: bool,
@@ -655,7 +651,13 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         const NONE: usize = usize::MAX;
         let w = width as i32;
         let affine = self.affine_cue().is_some();
-        let (active, sorted, open) = (&self.active, &self.sorted[..], &mut self.open);
+        let (active, sorted, open) = (&mut self.active[..], &self.sorted[..], &mut self.open);
+        let planes = Planes {
+            vertices: &self.vertices,
+            polygons: &self.polygons,
+            s,
+            y,
+        };
         open.clear();
         let (mut cur, mut k) = (0i32, 0usize);
         // The front polygon: its slot, its index in `open`, where its span ends, and the first
@@ -673,7 +675,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                     // Cannot fail: `open` has the active list's capacity.
                     let _ = open.push(slot as u16);
                     if front != NONE {
-                        match challenge(active, front, slot, cur) {
+                        match challenge(&planes, active, front, slot, cur) {
                             Some(u) => until = until.min(u),
                             None => front = NONE, // the newcomer is in front
                         }
@@ -692,13 +694,16 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                         // Alone: in front until it closes (the common case on a mesh).
                         (only as usize, 0, i32::MAX)
                     } else {
-                        establish(active, open, cur)
+                        establish(&planes, active, open, cur)
                     };
                     front_xr = active[front].xr;
                     stats.front_changes += 1;
                 }
             }
             let next = if front != NONE {
+                if want_depth {
+                    planes.ensure(&mut active[front]);
+                }
                 let a = &active[front];
                 let next = next_start.min(front_xr).min(until);
                 let (x0, x1) = (cur as usize, next as usize);
@@ -888,10 +893,88 @@ fn fill_depth<N: Scalar>(depth: &mut [N], a: &Active<N>, x0: i32) {
     }
 }
 
+/// What computing a depth plane on demand needs: the vertex buffer, the polygon table, the
+/// sub-pixel bits, the current row.
+struct Planes<'a, N, S> {
+    vertices: &'a [RasterVertex<N>],
+    polygons: &'a [Polygon<S>],
+    s: u32,
+    y: i32,
+}
+
+impl<N: Scalar, S: Slot> Planes<'_, N, S> {
+    /// Sets `a`'s depth plane (and its depth at column 0 of the current row) if not yet set:
+    /// the plane through its vertices in canonical order, the same bits whenever computed.
+    #[inline]
+    fn ensure(&self, a: &mut Active<N>) {
+        if a.planed {
+            return;
+        }
+        let ring = Ring {
+            vertices: self.vertices,
+            polygon: &self.polygons[a.poly as usize],
+        };
+        // Cannot be `None`: the outline has a nonzero area. A zero plane is harmless.
+        a.plane = plane_of(&ring, self.s).unwrap_or(DepthPlane {
+            z_ref: N::ZERO,
+            dzdx: N::ZERO,
+            dzdy: N::ZERO,
+            i_ref: 0,
+            j_ref: 0,
+        });
+        a.z_row = a.plane.at(0, self.y);
+        a.planed = true;
+    }
+}
+
+/// The top-left vertex of a polygon (least y, then least x): where both its sides start.
+fn top_of<N: Copy, S: Slot>(ring: &Ring<'_, N, S>) -> usize {
+    if ring.len() == 3 {
+        let v = |k: usize| {
+            let p = ring.get(k);
+            (p.y, p.x)
+        };
+        let (a, b, c) = (v(0), v(1), v(2));
+        return match (a <= b, a <= c, b <= c) {
+            (true, true, _) => 0,
+            (false, _, true) => 1,
+            _ => 2,
+        };
+    }
+    (0..ring.len())
+        .min_by_key(|&k| (ring.get(k).y, ring.get(k).x))
+        .unwrap_or(0)
+}
+
+/// The depth plane of a polygon through its vertices in canonical order (from the top-left
+/// vertex, clockwise on the display), so the same polygon always gets the same bits.
+fn plane_of<N: Scalar, S: Slot>(ring: &Ring<'_, N, S>, s: u32) -> Option<DepthPlane<N>> {
+    if ring.len() == 3 {
+        let top = top_of(ring);
+        let (f, g) = if ring.polygon.clockwise {
+            (1, 2)
+        } else {
+            (2, 1)
+        };
+        let v = |k: usize| *ring.get((top + k) % 3);
+        N::depth_plane(&[v(0), v(f), v(g)], s)
+    } else {
+        ring.ordered(|v| N::depth_plane(v, s))
+    }
+}
+
 /// Whether the polygon in slot `p` is visible over the one in slot `q` at column `x`: nearer,
 /// or as near and first in the scene.
 #[inline]
-fn beats<N: Scalar>(active: &[Active<N>], p: usize, q: usize, x: i32) -> bool {
+fn beats<N: Scalar, S: Slot>(
+    planes: &Planes<'_, N, S>,
+    active: &mut [Active<N>],
+    p: usize,
+    q: usize,
+    x: i32,
+) -> bool {
+    planes.ensure(&mut active[p]);
+    planes.ensure(&mut active[q]);
     let (zp, zq) = (depth_at(&active[p], x), depth_at(&active[q], x));
     zp < zq || (zp == zq && active[p].poly < active[q].poly)
 }
@@ -900,18 +983,24 @@ fn beats<N: Scalar>(active: &[Active<N>], p: usize, q: usize, x: i32) -> bool {
 /// else the first column where `q` wins within the stretch both cover (`i32::MAX` if none).
 /// Depths are linear in x, so `p − q` changes sign at most once: check the stretch's far end,
 /// then bisect (in Q16.16 exactly: the steps are exact integer arithmetic).
-fn challenge<N: Scalar>(active: &[Active<N>], p: usize, q: usize, x: i32) -> Option<i32> {
-    if !beats(active, p, q, x) {
+fn challenge<N: Scalar, S: Slot>(
+    planes: &Planes<'_, N, S>,
+    active: &mut [Active<N>],
+    p: usize,
+    q: usize,
+    x: i32,
+) -> Option<i32> {
+    if !beats(planes, active, p, q, x) {
         return None;
     }
     let mut hi = active[p].xr.min(active[q].xr) - 1;
-    if beats(active, p, q, hi) {
+    if beats(planes, active, p, q, hi) {
         return Some(i32::MAX);
     }
     let mut lo = x; // p wins at lo, q at hi
     while hi - lo > 1 {
         let mid = lo + (hi - lo) / 2;
-        if beats(active, p, q, mid) {
+        if beats(planes, active, p, q, mid) {
             lo = mid;
         } else {
             hi = mid;
@@ -922,29 +1011,29 @@ fn challenge<N: Scalar>(active: &[Active<N>], p: usize, q: usize, x: i32) -> Opt
 
 /// The polygon in front at `x` among the slots `open` (not empty): its slot, its index in
 /// `open`, and the first column where another open polygon overtakes it.
-fn establish<N: Scalar>(active: &[Active<N>], open: &[u16], x: i32) -> (usize, usize, i32) {
-    let at = winner(active, open.iter().map(|&i| i as usize), x);
-    let p = open[at] as usize;
-    let until = open
-        .iter()
-        .map(|&q| q as usize)
-        .filter(|&q| q != p)
-        .filter_map(|q| challenge(active, p, q, x))
-        .min()
-        .unwrap_or(i32::MAX);
-    (p, at, until)
-}
-
-/// The index, in `open` (not empty), of the visible polygon at column `x`: least depth, then
-/// first in the scene.
-fn winner<N: Scalar>(active: &[Active<N>], open: impl Iterator<Item = usize>, x: i32) -> usize {
-    let mut best: Option<(usize, usize)> = None; // (index, slot)
-    for (i, slot) in open.enumerate() {
-        if best.is_none_or(|(_, b)| beats(active, slot, b, x)) {
-            best = Some((i, slot));
+fn establish<N: Scalar, S: Slot>(
+    planes: &Planes<'_, N, S>,
+    active: &mut [Active<N>],
+    open: &[u16],
+    x: i32,
+) -> (usize, usize, i32) {
+    // The visible one: least depth, then first in the scene.
+    let mut at = 0;
+    for i in 1..open.len() {
+        if beats(planes, active, open[i] as usize, open[at] as usize, x) {
+            at = i;
         }
     }
-    best.map_or(0, |(i, _)| i)
+    let p = open[at] as usize;
+    let mut until = i32::MAX;
+    for &q in open {
+        if q as usize != p {
+            if let Some(u) = challenge(planes, active, p, q as usize, x) {
+                until = until.min(u);
+            }
+        }
+    }
+    (p, at, until)
 }
 
 /// RAM the scan-line renderer (`u16` slots) needs for a scene with these requirements, in
