@@ -503,10 +503,6 @@ struct ClipV<N> {
     w: N,
 }
 
-/// One guard-band plane, `coord(v) − g·d(v)` crossing 0: which coordinate, and `g` (the side
-/// is its sign).
-type GuardPlane<N> = (fn(&ClipV<N>) -> N, N);
-
 /// Everything model mode needs to take a view-space point to snapped sub-pixels.
 struct Projector<N> {
     perspective: bool,
@@ -515,7 +511,10 @@ struct Projector<N> {
     sy: N,
     near: N,
     far: N,
-    guard: [GuardPlane<N>; 4],
+    /// The guard band in normalised units, x and y: `|x| ≤ gx·d` keeps x within
+    /// [`GUARD_BAND`] pixels of the viewport.
+    gx: N,
+    gy: N,
     /// Half the viewport, in sub-pixels: the projection's centre and scale.
     kx: i32,
     ky: i32,
@@ -559,12 +558,8 @@ impl<N: Scalar> Projector<N> {
             sy,
             near,
             far,
-            guard: [
-                (|v| v.x, gx),
-                (|v| v.x, gx.neg()),
-                (|v| v.y, gy),
-                (|v| v.y, gy.neg()),
-            ],
+            gx,
+            gy,
             kx: (cfg.width as i32) << (s - 1),
             ky: (cfg.height as i32) << (s - 1),
             depth_k,
@@ -594,18 +589,28 @@ impl<N: Scalar> Projector<N> {
         }
     }
 
-    /// Guard plane `i`'s signed distance: `coord(v) − g·d(v)`.
+    /// Guard plane `i`'s signed distance (0, 1: x ≤ gx·d, x ≥ −gx·d; 2, 3: the same in y),
+    /// written `coord ∓ g·d` so that both planes of an axis use the one product `g·d`.
     #[inline]
     fn guard_c(&self, i: usize, v: &ClipV<N>) -> N {
-        let (coord, g) = self.guard[i];
-        coord(v).sub(g.mul(self.d(v)))
+        let (coord, g) = if i < 2 {
+            (v.x, self.gx)
+        } else {
+            (v.y, self.gy)
+        };
+        let gd = g.mul(self.d(v));
+        if i % 2 == 0 {
+            coord.sub(gd)
+        } else {
+            coord.add(gd)
+        }
     }
 
-    /// Whether `v` is inside guard plane `i` (its side: `c ≤ 0` for a positive `g`).
+    /// Whether `v` is inside guard plane `i` (`c ≤ 0` for the planes on the positive side).
     #[inline]
     fn inside_guard(&self, i: usize, v: &ClipV<N>) -> bool {
         let c = self.guard_c(i, v);
-        if self.guard[i].1 > N::ZERO {
+        if i % 2 == 0 {
             c <= N::ZERO
         } else {
             c >= N::ZERO
@@ -613,10 +618,17 @@ impl<N: Scalar> Projector<N> {
     }
 
     /// Whether clipping would leave `v` where it is: inside the near and far planes and the
-    /// guard band (the same tests the clipping path makes).
+    /// guard band (the same tests the clipping path makes, one product per axis).
     #[inline]
     fn inside(&self, v: &ClipV<N>) -> bool {
-        v.w >= self.near && v.w <= self.far && (0..4).all(|i| self.inside_guard(i, v))
+        let d = self.d(v);
+        let (gxd, gyd) = (self.gx.mul(d), self.gy.mul(d));
+        v.w >= self.near
+            && v.w <= self.far
+            && v.x.sub(gxd) <= N::ZERO
+            && v.x.add(gxd) >= N::ZERO
+            && v.y.sub(gyd) <= N::ZERO
+            && v.y.add(gyd) >= N::ZERO
     }
 
     /// Clips a polygon in clip space: near, far, then the four guard-band planes.
@@ -717,28 +729,27 @@ impl<N: Scalar> Lighting<N> {
     /// The colour of a face with model-space normal `normal` (any length; `None`: unlit).
     fn color(&self, base: Rgb565, normal: Option<[N; 3]>) -> Rgb565 {
         let lambert = match (normal, self.model_light, self.light, self.to_view) {
-            (Some([x, y, z]), Some(lm), _, _) => {
-                let n = Vec3::new(x, y, z);
-                let d = n.dot(lm);
-                if d > N::ZERO {
-                    d.mul(self.math.rsqrt(n.dot(n)))
-                } else {
-                    N::ZERO
-                }
-            }
+            (Some(n), Some(lm), _, _) => self.lambert(n, [lm.x, lm.y, lm.z]),
             (Some([x, y, z]), None, Some(l), Some(m)) => {
                 let n = m.apply_dir(Vec3::new(x, y, z));
-                let d = n.dot(l);
-                if d > N::ZERO {
-                    d.mul(self.math.rsqrt(n.dot(n)))
-                } else {
-                    N::ZERO
-                }
+                self.lambert([n.x, n.y, n.z], [l.x, l.y, l.z])
             }
             _ => N::ZERO,
         };
         let a = self.ambient;
         shade(base, a.add(N::ONE.sub(a).mul(lambert)))
+    }
+}
+
+impl<N: Scalar> Lighting<N> {
+    /// `max(0, n·l) / |n|`, the dot products summed exactly and rounded once.
+    #[inline]
+    fn lambert(&self, n: [N; 3], l: [N; 3]) -> N {
+        let dot = |a: [N; 3], b: [N; 3]| N::affine_row(&[a[0], a[1], a[2], N::ZERO], b);
+        match dot(n, l) {
+            Some(d) if d > N::ZERO => d.mul(self.math.rsqrt(dot(n, n).unwrap_or(N::MAX))),
+            _ => N::ZERO,
+        }
     }
 }
 

@@ -496,6 +496,32 @@ macro_rules! impl_fixed {
                 i32::try_from(rounded).ok().map($t::from_bits)
             }
             fn face_normal(a: [Self; 3], b: [Self; 3], c: [Self; 3]) -> Option<[Self; 3]> {
+                // Edges below 2^15 (a model's edges, nearly always): the cross product fits
+                // 32 bits, and so does everything else.
+                let d = |p: Self, q: Self| p.to_bits().checked_sub(q.to_bits());
+                let small = |v: i32| (v.wrapping_add(1 << 15) as u32) < 1 << 16;
+                if let (Some(x1), Some(y1), Some(z1), Some(x2), Some(y2), Some(z2)) = (
+                    d(b[0], a[0]),
+                    d(b[1], a[1]),
+                    d(b[2], a[2]),
+                    d(c[0], a[0]),
+                    d(c[1], a[1]),
+                    d(c[2], a[2]),
+                ) {
+                    if small(x1) && small(y1) && small(z1) && small(x2) && small(y2) && small(z2) {
+                        let n = [y1 * z2 - z1 * y2, z1 * x2 - x1 * z2, x1 * y2 - y1 * x2];
+                        let m = n[0].unsigned_abs() | n[1].unsigned_abs() | n[2].unsigned_abs();
+                        if m == 0 {
+                            return None;
+                        }
+                        // The largest component to [2^(F−1), 2^F): the highest bit of any
+                        // component is the largest one's.
+                        let shift = (32 - m.leading_zeros()) as i32 - $t::FRAC_NBITS as i32;
+                        return Some(n.map(|v| {
+                            $t::from_bits(if shift >= 0 { v >> shift } else { v << -shift })
+                        }));
+                    }
+                }
                 let e = |p: [Self; 3]| p.map(|v| v.to_bits() as i64);
                 let (a, b, c) = (e(a), e(b), e(c));
                 let mut e1 = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
