@@ -882,14 +882,21 @@ fn cue_span<N: Scalar>(intensity: &mut [Rgb565], a: &Active<N>, x0: i32, x1: i32
     }
 }
 
-/// The depth of one polygon across a piece of row starting at column `x0`, stepped one pixel
-/// at a time.
+/// The depth of one polygon across a piece of row starting at column `x0`: stepped one pixel
+/// at a time in exact formats (the plane's bits), evaluated at each pixel in f32 (so a depth
+/// does not depend on where the row was split into pieces).
 #[inline]
 fn fill_depth<N: Scalar>(depth: &mut [N], a: &Active<N>, x0: i32) {
-    let mut z = depth_at(a, x0);
-    for d in depth {
-        *d = z;
-        z = z.step(a.plane.dzdx, 1);
+    if N::EXACT_STEPS {
+        let mut z = depth_at(a, x0);
+        for d in depth {
+            *d = z;
+            z = z.step(a.plane.dzdx, 1);
+        }
+    } else {
+        for (x, d) in (x0..).zip(depth) {
+            *d = depth_at(a, x);
+        }
     }
 }
 
