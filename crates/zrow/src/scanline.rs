@@ -577,39 +577,32 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
     /// Retires what ends on row `y` and steps the rest to the next row: each edge one row
     /// down, or, where it ends, the next edge of its side; the span and its left depth.
     fn advance(&mut self, y: i32, cfg: &Config) {
-        let cue = self.affine_cue();
-        let (active, free, polygons, vertices, edges) = (
-            &mut self.active,
-            &mut self.free,
-            &self.polygons,
-            &self.vertices,
-            &mut self.edges,
-        );
-        self.sorted.retain_mut(|k| {
-            let slot = *k as u16;
+        let Scanline {
+            active,
+            free,
+            polygons,
+            vertices,
+            edges,
+            sorted,
+            ..
+        } = self;
+        let mut kept = 0;
+        for i in 0..sorted.len() {
+            let slot = sorted[i] as u16;
             let a = &mut active[slot as usize];
             if a.last_row as i32 <= y {
                 let _ = free.push(slot); // at most A slots
-                return false;
+                continue;
             }
-            let p = &polygons[a.poly as usize];
-            // Clockwise on the display: forward from the top runs down the right side.
-            for (right, w) in [(false, &mut a.left), (true, &mut a.right)] {
-                if w.last as i32 > y {
-                    w.dda.step();
-                    continue;
-                }
-                let ring = Ring {
-                    vertices,
-                    polygon: p,
-                };
-                if let Some(next) = walk_from(ring, w.at, right == p.clockwise, y + 1, cfg) {
-                    *w = next;
-                    *edges += 1;
-                }
+            if a.left.last as i32 > y {
+                a.left.dda.step();
+            } else {
+                next_edge(a, false, polygons, vertices, y + 1, cfg, edges);
             }
-            if let Some(c) = cue {
-                step_cue(&c, a, y + 1);
+            if a.right.last as i32 > y {
+                a.right.dda.step();
+            } else {
+                next_edge(a, true, polygons, vertices, y + 1, cfg, edges);
             }
             (a.xl, a.xr) = (a.left.dda.x, a.right.dda.x);
             // Exact formats step (the same bits); f32 evaluates, so no error accumulates.
@@ -620,9 +613,15 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                     a.plane.at(0, y + 1)
                 };
             }
-            *k = key(a.xl, slot);
-            true
-        });
+            sorted[kept] = key(a.xl, slot);
+            kept += 1;
+        }
+        sorted.truncate(kept);
+        if let Some(c) = self.affine_cue() {
+            for &k in self.sorted.iter() {
+                step_cue(&c, &mut self.active[k as u16 as usize], y + 1);
+            }
+        }
     }
 
     /// Sweeps the row left to right, filling it from a **front** polygon at a time.
@@ -792,6 +791,32 @@ fn walk_from<N: Copy, S: Slot>(
         (at, p) = (next, q);
     }
     None
+}
+
+/// The next edge down one side of an active polygon, from where its current edge ended, at
+/// row `y` (out of the row loop: it happens once or twice per polygon).
+#[cold]
+#[inline(never)]
+fn next_edge<N: Copy, S: Slot>(
+    a: &mut Active<N>,
+    right: bool,
+    polygons: &[Polygon<S>],
+    vertices: &[RasterVertex<N>],
+    y: i32,
+    cfg: &Config,
+    edges: &mut u32,
+) {
+    let p = &polygons[a.poly as usize];
+    let ring = Ring {
+        vertices,
+        polygon: p,
+    };
+    let w = if right { &mut a.right } else { &mut a.left };
+    // Clockwise on the display: forward from the top runs down the right side.
+    if let Some(next) = walk_from(ring, w.at, right == p.clockwise, y, cfg) {
+        *w = next;
+        *edges += 1;
+    }
 }
 
 /// The affine cue one row down: each edge's factor stepped, or set up again where the edge
