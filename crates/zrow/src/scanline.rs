@@ -233,6 +233,18 @@ pub struct Scanline<
     cue: Option<Cue<N>>,
     /// Edges walked so far this frame (for [`FrameStats::edges`]).
     edges: u32,
+    /// The row being drawn and what drawing it needs from the configuration.
+    row: RowState,
+}
+
+/// The row being drawn, and the configuration its sweep needs.
+#[derive(Clone, Copy, Debug)]
+struct RowState {
+    y: i32,
+    width: i32,
+    /// Sub-pixel bits.
+    s: u32,
+    background: Rgb565,
 }
 
 impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, S: Slot> Default
@@ -297,6 +309,12 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             intensity: [Rgb565::BLACK; W],
             cue: None,
             edges: 0,
+            row: RowState {
+                y: 0,
+                width: 0,
+                s: 0,
+                background: Rgb565::BLACK,
+            },
         }
     }
 
@@ -479,8 +497,13 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 self.activate(i, y, cfg, want_depth);
             }
             self.sort_active();
-            let s = cfg.subpixel_bits as u32;
-            self.resolve_row(y, s, width, cfg.background, want_depth, stats);
+            self.row = RowState {
+                y,
+                width: width as i32,
+                s: cfg.subpixel_bits as u32,
+                background: cfg.background,
+            };
+            self.resolve_row(want_depth, stats);
             let depth: &[N] = if want_depth {
                 Cue::shade_row_if_perspective(
                     &self.cue,
@@ -576,6 +599,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
 
     /// Retires what ends on row `y` and steps the rest to the next row: each edge one row
     /// down, or, where it ends, the next edge of its side; the span and its left depth.
+    #[inline(never)]
     fn advance(&mut self, y: i32, cfg: &Config) {
         let Scanline {
             active,
@@ -636,33 +660,84 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
     /// when it closes, is overtaken at its crossing, or a newcomer is in front of it — that
     /// is, where the visible surface changes.
     ///
-    /// The open polygons sit in a min-heap on their span's end (retiring costs O(log n)).
-    fn resolve_row(
+    /// Most spans of a mesh meet no other (neighbours abut): a span that no later span opens
+    /// inside is filled at once, with no bookkeeping; the sweep above runs only from where
+    /// spans overlap until nothing is open again.
+    #[inline(never)]
+    fn resolve_row(&mut self, want_depth: bool, stats: &mut FrameStats) {
+        let w = self.row.width;
+        let (mut cur, mut k) = (0i32, 0usize);
+        while cur < w {
+            // The next span that opens anything (passing over spans empty in this row or
+            // already behind `cur`).
+            let mut next = None;
+            while let Some(&key) = self.sorted.get(k) {
+                k += 1;
+                let (slot, xl) = (key as u16 as usize, key_left(key).max(cur));
+                if self.active[slot].xr > xl {
+                    next = Some((slot, xl));
+                    break;
+                }
+            }
+            let Some((slot, start)) = next.filter(|&(_, start)| start < w) else {
+                self.paint(cur, w, None, want_depth);
+                return;
+            };
+            self.paint(cur, start, None, want_depth);
+            cur = start;
+            // Alone unless a later span opens before this one ends.
+            let xr = self.active[slot].xr;
+            let mut j = k;
+            let mut alone = true;
+            while let Some(&key) = self.sorted.get(j) {
+                let xl = key_left(key);
+                if xl >= xr {
+                    break;
+                }
+                if self.active[key as u16 as usize].xr > xl.max(cur) {
+                    alone = false;
+                    break;
+                }
+                j += 1;
+            }
+            if alone {
+                k = j; // the spans passed over are empty
+                let end = xr.min(w);
+                stats.front_changes += 1;
+                self.paint(cur, end, Some(slot), want_depth);
+                cur = end;
+            } else {
+                (cur, k) = self.overlap(cur, k, slot, want_depth, stats);
+            }
+        }
+    }
+
+    /// The sweep from column `cur` where span `first` (already taken from the keys, up to
+    /// `k`) meets others, until nothing is open; returns where it stopped and the next key.
+    fn overlap(
         &mut self,
-        y: i32,
-        s: u32,
-        width: usize,
-        background: Rgb565,
+        mut cur: i32,
+        mut k: usize,
+        first: usize,
         want_depth: bool,
         stats: &mut FrameStats,
-    ) {
+    ) -> (i32, usize) {
         /// No front polygon.
         const NONE: usize = usize::MAX;
-        let w = width as i32;
-        let affine = self.affine_cue().is_some();
-        let (active, sorted, open) = (&mut self.active[..], &self.sorted[..], &mut self.open);
-        let planes = Planes {
-            vertices: &self.vertices,
-            polygons: &self.polygons,
-            s,
-            y,
-        };
-        open.clear();
-        let (mut cur, mut k) = (0i32, 0usize);
+        let RowState { y, width: w, s, .. } = self.row;
+        self.open.clear();
+        let _ = self.open.push(first as u16);
         // The front polygon: its slot, its index in `open`, where its span ends, and the first
         // column where another open polygon may overtake it.
         let (mut front, mut at, mut front_xr, mut until) = (NONE, 0usize, 0i32, i32::MAX);
         loop {
+            let (active, sorted, open) = (&mut self.active[..], &self.sorted[..], &mut self.open);
+            let planes = Planes {
+                vertices: &self.vertices,
+                polygons: &self.polygons,
+                s,
+                y,
+            };
             // Spans opening at or before `cur` (left ends read from the keys).
             while let Some(&key) = sorted.get(k) {
                 if key_left(key) > cur {
@@ -683,56 +758,67 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             }
             let next_start = sorted.get(k).map_or(w, |&key| key_left(key)).min(w);
             if front == NONE {
-                // Spans that closed behind the last front leave only now (a front leaves
-                // `open` as it closes, so on a mesh `open` is the newcomer alone).
-                if open.len() > 1 || open.first().is_some_and(|&i| active[i as usize].xr <= cur) {
-                    open.retain(|&i| active[i as usize].xr > cur);
+                // Spans that closed behind the last front leave only now.
+                open.retain(|&i| active[i as usize].xr > cur);
+                if open.is_empty() {
+                    return (cur, k); // nothing open: back to spans alone
                 }
-                if let Some(&only) = open.first() {
-                    (front, at, until) = if open.len() == 1 {
-                        // Alone: in front until it closes (the common case on a mesh).
-                        (only as usize, 0, i32::MAX)
-                    } else {
-                        establish(&planes, active, open, cur)
-                    };
-                    front_xr = active[front].xr;
-                    stats.front_changes += 1;
-                }
+                (front, at, until) = if open.len() == 1 {
+                    (open[0] as usize, 0, i32::MAX)
+                } else {
+                    establish(&planes, active, open, cur)
+                };
+                front_xr = active[front].xr;
+                stats.front_changes += 1;
             }
-            let next = if front != NONE {
-                if want_depth {
-                    planes.ensure(&mut active[front]);
-                }
-                let a = &active[front];
-                let next = next_start.min(front_xr).min(until);
-                let (x0, x1) = (cur as usize, next as usize);
-                fill_run(&mut self.intensity[x0..x1], a.color);
-                if want_depth {
-                    fill_depth(&mut self.depth[x0..x1], a, cur);
-                }
-                if affine {
-                    cue_span(&mut self.intensity, a, cur, next);
-                }
-                next
-            } else {
-                let (x0, x1) = (cur as usize, next_start as usize);
-                fill_run(&mut self.intensity[x0..x1], background);
-                if want_depth {
-                    self.depth[x0..x1].fill(N::MAX);
-                }
-                next_start
-            };
+            let next = next_start.min(front_xr).min(until).min(w);
+            self.paint(cur, next, Some(front), want_depth);
             cur = next;
             if cur >= w {
-                break;
+                return (cur, k);
             }
-            if front != NONE {
-                if front_xr <= cur {
-                    open.swap_remove(at); // closed
-                    front = NONE;
-                } else if until <= cur {
-                    stats.crossings += 1; // overtaken
-                    front = NONE;
+            if front_xr <= cur {
+                self.open.swap_remove(at); // closed
+                front = NONE;
+            } else if until <= cur {
+                stats.crossings += 1; // overtaken
+                front = NONE;
+            }
+        }
+    }
+
+    /// Fills columns `x0..x1` of the row from the polygon in `slot` (its colour, and its depth
+    /// when someone reads it), or with the background.
+    #[inline]
+    fn paint(&mut self, x0: i32, x1: i32, slot: Option<usize>, want_depth: bool) {
+        if x0 >= x1 {
+            return;
+        }
+        let (a0, a1) = (x0 as usize, x1 as usize);
+        match slot {
+            Some(slot) => {
+                if want_depth {
+                    let planes = Planes {
+                        vertices: &self.vertices,
+                        polygons: &self.polygons,
+                        s: self.row.s,
+                        y: self.row.y,
+                    };
+                    planes.ensure(&mut self.active[slot]);
+                }
+                let a = &self.active[slot];
+                fill_run(&mut self.intensity[a0..a1], a.color);
+                if want_depth {
+                    fill_depth(&mut self.depth[a0..a1], a, x0);
+                }
+                if let Some(_c) = self.affine_cue() {
+                    cue_span(&mut self.intensity, a, x0, x1);
+                }
+            }
+            None => {
+                fill_run(&mut self.intensity[a0..a1], self.row.background);
+                if want_depth {
+                    self.depth[a0..a1].fill(N::MAX);
                 }
             }
         }
