@@ -479,6 +479,15 @@ macro_rules! impl_fixed {
                 // Each product is below 2^62, so three of them and the translation fit 2^64
                 // only just: add in i64 with an overflow check, in i128 when it trips.
                 let t = (row[3].to_bits() as i64) << f;
+                // Linear entries below 2^30: each product is below 2^61, so three of them
+                // and the translation (below 2^47) cannot overflow.
+                let small = |v: Self| (v.to_bits().wrapping_add(1 << 30) as u32) < 1 << 31;
+                if small(row[0]) && small(row[1]) && small(row[2]) {
+                    let v = prod(row[0], p[0]) + prod(row[1], p[1]) + prod(row[2], p[2]) + t;
+                    return i32::try_from(((v >> (f - 1)) + 1) >> 1)
+                        .ok()
+                        .map($t::from_bits);
+                }
                 let sum = prod(row[0], p[0])
                     .checked_add(prod(row[1], p[1]))
                     .and_then(|v| v.checked_add(prod(row[2], p[2])))

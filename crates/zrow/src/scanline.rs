@@ -245,6 +245,8 @@ struct RowState {
     /// Sub-pixel bits.
     s: u32,
     background: Rgb565,
+    /// Whether the affine depth cue shades spans.
+    cue: bool,
 }
 
 impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, S: Slot> Default
@@ -314,6 +316,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 width: 0,
                 s: 0,
                 background: Rgb565::BLACK,
+                cue: false,
             },
         }
     }
@@ -502,6 +505,9 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 width: width as i32,
                 s: cfg.subpixel_bits as u32,
                 background: cfg.background,
+                cue: self
+                    .cue
+                    .is_some_and(|c| c.interpolation == Interpolation::Affine),
             };
             self.resolve_row(want_depth, stats);
             let depth: &[N] = if want_depth {
@@ -795,32 +801,36 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             return;
         }
         let (a0, a1) = (x0 as usize, x1 as usize);
-        match slot {
-            Some(slot) => {
-                if want_depth {
-                    let planes = Planes {
-                        vertices: &self.vertices,
-                        polygons: &self.polygons,
-                        s: self.row.s,
-                        y: self.row.y,
-                    };
-                    planes.ensure(&mut self.active[slot]);
-                }
-                let a = &self.active[slot];
-                fill_run(&mut self.intensity[a0..a1], a.color);
-                if want_depth {
-                    fill_depth(&mut self.depth[a0..a1], a, x0);
-                }
-                if let Some(_c) = self.affine_cue() {
-                    cue_span(&mut self.intensity, a, x0, x1);
-                }
+        let color = slot.map_or(self.row.background, |i| self.active[i].color);
+        fill_run(&mut self.intensity[a0..a1], color);
+        if want_depth || self.row.cue {
+            self.paint_more(x0, x1, slot, want_depth);
+        }
+    }
+
+    /// The depth (when read) and affine cue of a piece [`Self::paint`] coloured.
+    #[cold]
+    #[inline(never)]
+    fn paint_more(&mut self, x0: i32, x1: i32, slot: Option<usize>, want_depth: bool) {
+        let (a0, a1) = (x0 as usize, x1 as usize);
+        let Some(slot) = slot else {
+            if want_depth {
+                self.depth[a0..a1].fill(N::MAX);
             }
-            None => {
-                fill_run(&mut self.intensity[a0..a1], self.row.background);
-                if want_depth {
-                    self.depth[a0..a1].fill(N::MAX);
-                }
-            }
+            return;
+        };
+        if want_depth {
+            let planes = Planes {
+                vertices: &self.vertices,
+                polygons: &self.polygons,
+                s: self.row.s,
+                y: self.row.y,
+            };
+            planes.ensure(&mut self.active[slot]);
+            fill_depth(&mut self.depth[a0..a1], &self.active[slot], x0);
+        }
+        if self.row.cue {
+            cue_span(&mut self.intensity, &self.active[slot], x0, x1);
         }
     }
 }
