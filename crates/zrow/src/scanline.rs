@@ -539,12 +539,17 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             vertices: &self.vertices,
             polygon: &p,
         };
-        let top = top_of(&ring);
         // Clockwise on the display: forward from the top runs down the right side.
-        let (Some(left), Some(right)) = (
-            walk_from(ring, top as u8, !p.clockwise, y, cfg),
-            walk_from(ring, top as u8, p.clockwise, y, cfg),
-        ) else {
+        let walks = if ring.len() == 3 {
+            triangle_walks(&ring, p.clockwise, y, cfg)
+        } else {
+            let top = top_of(&ring) as u8;
+            (
+                walk_from(ring, top, !p.clockwise, y, cfg),
+                walk_from(ring, top, p.clockwise, y, cfg),
+            )
+        };
+        let (Some(left), Some(right)) = walks else {
             return; // cannot happen: the outline covers row y
         };
         self.edges += 2;
@@ -887,6 +892,40 @@ fn walk_from<N: Copy, S: Slot>(
         (at, p) = (next, q);
     }
     None
+}
+
+/// The left and right edges of a triangle at row `y`, its first: from the top vertex down
+/// each side, the second edge of a side where its first ends above `y` (what [`walk_from`]
+/// does, without walking a ring).
+fn triangle_walks<N: Copy, S: Slot>(
+    ring: &Ring<'_, N, S>,
+    clockwise: bool,
+    y: i32,
+    cfg: &Config,
+) -> (Option<Walk>, Option<Walk>) {
+    let v = [*ring.get(0), *ring.get(1), *ring.get(2)];
+    let t = top_of(ring);
+    let (f, b) = ((t + 1) % 3, (t + 2) % 3);
+    let (s, h, height) = (cfg.subpixel_bits as u32, cfg.half(), cfg.height as i32);
+    // The edge from vertex `p` down to `q`, if it covers row `y`.
+    let edge = |p: usize, q: usize| {
+        let (p, qv) = (&v[p], &v[q]);
+        let last = row_at_or_below(qv.y, s, h).min(height) - 1;
+        (qv.y > p.y && last >= y).then(|| Walk {
+            dda: Dda::between(p.x, p.y, qv.x, qv.y, y, s),
+            last: last as i16,
+            at: q as u8,
+        })
+    };
+    // Down one side: top to its neighbour, then on to the third vertex.
+    let side =
+        |n: usize, m: usize| edge(t, n).or_else(|| (v[m].y > v[n].y).then(|| edge(n, m)).flatten());
+    let (forward, backward) = (side(f, b), side(b, f));
+    if clockwise {
+        (backward, forward)
+    } else {
+        (forward, backward)
+    }
 }
 
 /// The next edge down one side of an active polygon, from where its current edge ended, at
