@@ -235,6 +235,11 @@ pub struct Scanline<
     edges: u32,
     /// The row being drawn and what drawing it needs from the configuration.
     row: RowState,
+    /// Pixels the active spans cover in the current row, summed (overlaps counted again).
+    cover: i32,
+    /// [`Scanline::resolve_by_depth`]'s hierarchical depth: the largest depth stored in each
+    /// block of [`HIZ_BLOCK`] pixels (or more, for rows wider than 1,024 pixels).
+    hiz: [N; HIZ_BLOCKS],
 }
 
 /// The row being drawn, and the configuration its sweep needs.
@@ -248,6 +253,17 @@ struct RowState {
     /// Whether the affine depth cue shades spans.
     cue: bool,
 }
+
+/// A row whose spans cover more than this many times its width is resolved pixel by pixel
+/// ([`Scanline::resolve_by_depth`]): overlap that heavy costs the sweep more than a depth
+/// test per covered pixel.
+const HEAVY_COVER: i32 = 2;
+
+/// Pixels in a block of [`Scanline::resolve_by_depth`]'s hierarchical depth, for rows up to
+/// `HIZ_BLOCKS · HIZ_BLOCK` pixels wide (wider rows double it as often as needed).
+const HIZ_BLOCK: usize = 16;
+/// Blocks of the hierarchical depth.
+const HIZ_BLOCKS: usize = 64;
 
 impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, S: Slot> Default
     for Scanline<N, W, V, P, A, S>
@@ -311,6 +327,8 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             intensity: [Rgb565::BLACK; W],
             cue: None,
             edges: 0,
+            cover: 0,
+            hiz: [N::ZERO; HIZ_BLOCKS],
             row: RowState {
                 y: 0,
                 width: 0,
@@ -348,6 +366,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         self.cue = Cue::for_frame(scene, cfg)?;
         self.polygons.clear();
         self.used = 0;
+        self.cover = 0;
         self.free.clear();
         self.sorted.clear();
         let (mut polys, mut uncached) = (0u32, false);
@@ -584,6 +603,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             a.cue[2..4].copy_from_slice(&edge_cue(&c, &a.plane, &right, y));
             (a.cue_last[0], a.cue_last[1]) = (left.last, right.last);
         }
+        self.cover += span_cover(a.xl, a.xr, cfg.width as i32);
         let _ = self.sorted.push(key(a.xl, slot)); // at most A slots are occupied
     }
 
@@ -622,6 +642,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             ..
         } = self;
         let mut kept = 0;
+        let (mut cover, w) = (0, cfg.width as i32);
         for i in 0..sorted.len() {
             let slot = sorted[i] as u16;
             let a = &mut active[slot as usize];
@@ -648,10 +669,12 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                     a.plane.at(0, y + 1)
                 };
             }
+            cover += span_cover(a.xl, a.xr, w);
             sorted[kept] = key(a.xl, slot);
             kept += 1;
         }
         sorted.truncate(kept);
+        self.cover = cover;
         if let Some(c) = self.affine_cue() {
             for &k in self.sorted.iter() {
                 step_cue(&c, &mut self.active[k as u16 as usize], y + 1);
@@ -677,6 +700,10 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
     #[inline(never)]
     fn resolve_row(&mut self, want_depth: bool, stats: &mut FrameStats) {
         let w = self.row.width;
+        if self.cover > HEAVY_COVER * w && !self.row.cue {
+            self.resolve_by_depth();
+            return;
+        }
         let (mut cur, mut k) = (0i32, 0usize);
         while cur < w {
             // The next span that opens anything (passing over spans empty in this row or
@@ -738,6 +765,13 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         let RowState { y, width: w, s, .. } = self.row;
         self.open.clear();
         let _ = self.open.push(first as u16);
+        let planes = Planes {
+            vertices: &self.vertices,
+            polygons: &self.polygons,
+            s,
+            y,
+        };
+        planes.ensure(&mut self.active[first]);
         // The front polygon: its slot, its index in `open`, where its span ends, and the first
         // column where another open polygon may overtake it.
         let (mut front, mut at, mut front_xr, mut until) = (NONE, 0usize, 0i32, i32::MAX);
@@ -759,8 +793,9 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 if active[slot].xr > cur {
                     // Cannot fail: `open` has the active list's capacity.
                     let _ = open.push(slot as u16);
+                    planes.ensure(&mut active[slot]);
                     if front != NONE {
-                        match challenge(&planes, active, front, slot, cur) {
+                        match challenge(active, front, slot, cur) {
                             Some(u) => until = until.min(u),
                             None => front = NONE, // the newcomer is in front
                         }
@@ -777,7 +812,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 (front, at, until) = if open.len() == 1 {
                     (open[0] as usize, 0, i32::MAX)
                 } else {
-                    establish(&planes, active, open, cur)
+                    establish(active, open, cur)
                 };
                 front_xr = active[front].xr;
                 stats.front_changes += 1;
@@ -810,6 +845,125 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         fill_run(&mut self.intensity[a0..a1], color);
         if want_depth || self.row.cue {
             self.paint_more(x0, x1, slot, want_depth);
+        }
+    }
+
+    /// Resolves a row of heavy overlap pixel by pixel (the scan-line z-buffer: Foley & van
+    /// Dam §15.4): each span is depth-tested into the depth row, the visible polygon being the
+    /// least (depth, scene order) as in the sweep, so the result is the same. While the spans
+    /// are drawn the colour row holds each pixel's polygon number (a free reuse of its bits),
+    /// turned into colours at the end.
+    ///
+    /// A hierarchical depth (Greene, Kass & Miller 1993, at the scale of a row) keeps the
+    /// farthest depth stored in each block of pixels: depth being linear along the row, a
+    /// span's nearest depth over a block is at one of its ends, and where that is farther
+    /// than the block's farthest, no pixel of the block can win — the block, or the whole
+    /// span, is passed over exactly.
+    #[inline(never)]
+    fn resolve_by_depth(&mut self) {
+        /// No polygon.
+        const NOBODY: u16 = u16::MAX;
+        let raw = |c: Rgb565| RawU16::from(c).into_inner();
+        let of = |v: u16| Rgb565::from(RawU16::new(v));
+        let max = |m: N, &d: &N| if d > m { d } else { m };
+        let RowState {
+            y,
+            width,
+            s,
+            background,
+            ..
+        } = self.row;
+        let w = width as usize;
+        let planes = Planes {
+            vertices: &self.vertices,
+            polygons: &self.polygons,
+            s,
+            y,
+        };
+        let (depth, owner) = (&mut self.depth[..w], &mut self.intensity[..w]);
+        depth.fill(N::MAX);
+        owner.fill(of(NOBODY));
+        // Blocks of `1 << shift` pixels, at most HIZ_BLOCKS of them.
+        let mut shift = HIZ_BLOCK.trailing_zeros();
+        while w > HIZ_BLOCKS << shift {
+            shift += 1;
+        }
+        let hiz = &mut self.hiz[..w.div_ceil(1 << shift)];
+        hiz.fill(N::MAX);
+        for &key in &self.sorted {
+            let a = &mut self.active[key as u16 as usize];
+            let (x0, x1) = (a.xl.max(0), a.xr.min(width));
+            if x0 >= x1 {
+                continue;
+            }
+            planes.ensure(a);
+            let (poly, dzdx) = (a.poly, a.plane.dzdx);
+            let (x0, x1) = (x0 as usize, x1 as usize);
+            // Depth is linear along the row: its least over a stretch is at the stretch's
+            // left end if it grows to the right, else at its right end.
+            let rising = dzdx >= N::ZERO;
+            let near_of = |z0: N, len: i32| {
+                if rising {
+                    z0
+                } else {
+                    z0.step(dzdx, len - 1)
+                }
+            };
+            let z_start = depth_at(a, x0 as i32);
+            let blocks = &hiz[x0 >> shift..=(x1 - 1) >> shift];
+            if near_of(z_start, (x1 - x0) as i32) > blocks[1..].iter().fold(blocks[0], max) {
+                continue; // hidden all along
+            }
+            let (mut b0, mut z0) = (x0, z_start);
+            while b0 < x1 {
+                let b = b0 >> shift;
+                let b1 = ((b + 1) << shift).min(x1);
+                let len = (b1 - b0) as i32;
+                if !N::EXACT_STEPS {
+                    z0 = depth_at(a, b0 as i32);
+                }
+                let near = if N::EXACT_STEPS || rising {
+                    near_of(z0, len)
+                } else {
+                    depth_at(a, b1 as i32 - 1)
+                };
+                if near <= hiz[b] {
+                    let mut wrote = false;
+                    let pixels = depth[b0..b1].iter_mut().zip(&mut owner[b0..b1]);
+                    if N::EXACT_STEPS {
+                        let mut z = z0;
+                        for (d, o) in pixels {
+                            if z < *d || (z == *d && poly < raw(*o)) {
+                                (*d, *o, wrote) = (z, of(poly), true);
+                            }
+                            z = z.step(dzdx, 1);
+                        }
+                    } else {
+                        for (x, (d, o)) in (b0 as i32..).zip(pixels) {
+                            let z = depth_at(a, x);
+                            if z < *d || (z == *d && poly < raw(*o)) {
+                                (*d, *o, wrote) = (z, of(poly), true);
+                            }
+                        }
+                    }
+                    if wrote {
+                        // The block's farthest depth now (pixels outside the span keep
+                        // theirs).
+                        let block = &depth[b << shift..((b + 1) << shift).min(w)];
+                        hiz[b] = block[1..].iter().fold(block[0], max);
+                    }
+                }
+                z0 = z0.step(dzdx, len);
+                b0 = b1;
+            }
+        }
+        for c in owner.iter_mut() {
+            let o = raw(*c);
+            *c = if o == NOBODY {
+                background
+            } else {
+                self.polygons[o as usize].color
+            };
         }
     }
 
@@ -996,6 +1150,12 @@ fn edge_cue<N: Scalar>(c: &Cue<N>, plane: &DepthPlane<N>, w: &Walk, y: i32) -> [
     ]
 }
 
+/// Pixels of a row `0..w` that the span `xl..xr` covers.
+#[inline]
+fn span_cover(xl: i32, xr: i32, w: i32) -> i32 {
+    (xr.min(w) - xl.max(0)).max(0)
+}
+
 /// A sort key: the left end (biased to unsigned; spans lie within the guard band, far inside
 /// ±2^15) above the slot, so keys order by left end, then slot.
 #[inline]
@@ -1131,17 +1291,9 @@ fn plane_of<N: Scalar, S: Slot>(ring: &Ring<'_, N, S>, s: u32) -> Option<DepthPl
 }
 
 /// Whether the polygon in slot `p` is visible over the one in slot `q` at column `x`: nearer,
-/// or as near and first in the scene.
+/// or as near and first in the scene. Both have their planes ([`Planes::ensure`]).
 #[inline]
-fn beats<N: Scalar, S: Slot>(
-    planes: &Planes<'_, N, S>,
-    active: &mut [Active<N>],
-    p: usize,
-    q: usize,
-    x: i32,
-) -> bool {
-    planes.ensure(&mut active[p]);
-    planes.ensure(&mut active[q]);
+fn beats<N: Scalar>(active: &[Active<N>], p: usize, q: usize, x: i32) -> bool {
     let (zp, zq) = (depth_at(&active[p], x), depth_at(&active[q], x));
     zp < zq || (zp == zq && active[p].poly < active[q].poly)
 }
@@ -1150,24 +1302,18 @@ fn beats<N: Scalar, S: Slot>(
 /// else the first column where `q` wins within the stretch both cover (`i32::MAX` if none).
 /// Depths are linear in x, so `p − q` changes sign at most once: check the stretch's far end,
 /// then bisect (in Q16.16 exactly: the steps are exact integer arithmetic).
-fn challenge<N: Scalar, S: Slot>(
-    planes: &Planes<'_, N, S>,
-    active: &mut [Active<N>],
-    p: usize,
-    q: usize,
-    x: i32,
-) -> Option<i32> {
-    if !beats(planes, active, p, q, x) {
+fn challenge<N: Scalar>(active: &[Active<N>], p: usize, q: usize, x: i32) -> Option<i32> {
+    if !beats(active, p, q, x) {
         return None;
     }
     let mut hi = active[p].xr.min(active[q].xr) - 1;
-    if beats(planes, active, p, q, hi) {
+    if beats(active, p, q, hi) {
         return Some(i32::MAX);
     }
     let mut lo = x; // p wins at lo, q at hi
     while hi - lo > 1 {
         let mid = lo + (hi - lo) / 2;
-        if beats(planes, active, p, q, mid) {
+        if beats(active, p, q, mid) {
             lo = mid;
         } else {
             hi = mid;
@@ -1178,16 +1324,11 @@ fn challenge<N: Scalar, S: Slot>(
 
 /// The polygon in front at `x` among the slots `open` (not empty): its slot, its index in
 /// `open`, and the first column where another open polygon overtakes it.
-fn establish<N: Scalar, S: Slot>(
-    planes: &Planes<'_, N, S>,
-    active: &mut [Active<N>],
-    open: &[u16],
-    x: i32,
-) -> (usize, usize, i32) {
+fn establish<N: Scalar>(active: &[Active<N>], open: &[u16], x: i32) -> (usize, usize, i32) {
     // The visible one: least depth, then first in the scene.
     let mut at = 0;
     for i in 1..open.len() {
-        if beats(planes, active, open[i] as usize, open[at] as usize, x) {
+        if beats(active, open[i] as usize, open[at] as usize, x) {
             at = i;
         }
     }
@@ -1195,7 +1336,7 @@ fn establish<N: Scalar, S: Slot>(
     let mut until = i32::MAX;
     for &q in open {
         if q as usize != p {
-            if let Some(u) = challenge(planes, active, p, q as usize, x) {
+            if let Some(u) = challenge(active, p, q as usize, x) {
                 until = until.min(u);
             }
         }
