@@ -252,6 +252,11 @@ struct RowState {
     background: Rgb565,
     /// Whether the affine depth cue shades spans.
     cue: bool,
+    /// Columns of the colour row that may hold something other than the background from the
+    /// row before (the buffer persists from row to row): background is written only there.
+    stale: (i32, i32),
+    /// Columns this row painted with a polygon (the next row's `stale`).
+    fresh: (i32, i32),
 }
 
 /// A row whose spans cover more than this many times its width is resolved pixel by pixel
@@ -335,6 +340,8 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 s: 0,
                 background: Rgb565::BLACK,
                 cue: false,
+                stale: (0, 0),
+                fresh: (0, 0),
             },
         }
     }
@@ -519,6 +526,12 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 self.activate(i, y, cfg, want_depth);
             }
             self.sort_active();
+            // The whole row is unknown on the first row of a frame.
+            let stale = if y == 0 {
+                (0, width as i32)
+            } else {
+                self.row.fresh
+            };
             self.row = RowState {
                 y,
                 width: width as i32,
@@ -527,6 +540,8 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 cue: self
                     .cue
                     .is_some_and(|c| c.interpolation == Interpolation::Affine),
+                stale,
+                fresh: (width as i32, 0),
             };
             self.resolve_row(want_depth, stats);
             let depth: &[N] = if want_depth {
@@ -840,9 +855,26 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         if x0 >= x1 {
             return;
         }
-        let (a0, a1) = (x0 as usize, x1 as usize);
-        let color = slot.map_or(self.row.background, |i| self.active[i].color);
-        fill_run(&mut self.intensity[a0..a1], color);
+        match slot {
+            Some(i) => {
+                let f = &mut self.row.fresh;
+                (f.0, f.1) = (f.0.min(x0), f.1.max(x1));
+                fill_run(
+                    &mut self.intensity[x0 as usize..x1 as usize],
+                    self.active[i].color,
+                );
+            }
+            None => {
+                // Only where the row before left something else.
+                let (b0, b1) = (x0.max(self.row.stale.0), x1.min(self.row.stale.1));
+                if b0 < b1 {
+                    fill_run(
+                        &mut self.intensity[b0 as usize..b1 as usize],
+                        self.row.background,
+                    );
+                }
+            }
+        }
         if want_depth || self.row.cue {
             self.paint_more(x0, x1, slot, want_depth);
         }
@@ -880,6 +912,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             s,
             y,
         };
+        self.row.fresh = (0, width);
         let (depth, owner) = (&mut self.depth[..w], &mut self.intensity[..w]);
         depth.fill(N::MAX);
         owner.fill(of(NOBODY));
