@@ -27,10 +27,10 @@ use std::time::{Duration, Instant};
 use zrow::scanline::ram_bytes;
 use zrow::{requirements, Config, Row, RowSink, Scalar, Scanline, Scene, Q16_16};
 
-/// Renderer capacities: row width, polygon table, edge table, active list.
+/// Renderer capacities: row width, vertex buffer, polygon table, active list.
 const W: usize = 240;
+const V: usize = 6144;
 const P: usize = 2048;
-const E: usize = 6144;
 const A: usize = 512;
 /// A frame drawing fewer non-background pixels than this is treated as broken.
 const MIN_DRAWN: usize = 1000;
@@ -38,7 +38,7 @@ const MIN_DRAWN: usize = 1000;
 const MEASUREMENT: Duration = Duration::from_secs(3);
 const SAMPLES: usize = 20;
 
-type Renderer<N> = Scanline<N, W, E, P, A>;
+type Renderer<N> = Scanline<N, W, V, P, A>;
 
 /// Discards rows but keeps them observable: every row goes through `black_box` and a few of
 /// its pixels are folded into `acc`, so the optimizer cannot drop the work.
@@ -49,12 +49,13 @@ struct ProbeSink {
 
 impl<N> RowSink<N> for ProbeSink {
     type Error = Infallible;
+    /// A display's sink: colours only.
+    const WANTS_DEPTH: bool = false;
     fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), Infallible> {
         let px = black_box(row.intensity);
         let n = px.len();
         let raw = |x: usize| u32::from(px[x].into_storage());
         self.acc = self.acc.rotate_left(5) ^ raw(0) ^ raw(n / 2) ^ raw(n - 1) ^ u32::from(row.y);
-        black_box(row.depth);
         Ok(())
     }
 }
@@ -90,8 +91,10 @@ fn measure<N: Scalar>(
     let mut scratch = vec![0u32; cfg.height as usize + 1];
     let req = requirements(scene, cfg, &mut scratch).expect("requirements");
     assert!(
-        req.polygons as usize <= P && req.edges as usize <= E && req.active_polygons as usize <= A,
-        "{name}/{}: {req:?} exceeds the capacities P={P} E={E} A={A}",
+        req.polygons as usize <= P
+            && req.vertices as usize <= V
+            && req.active_polygons as usize <= A,
+        "{name}/{}: {req:?} exceeds the capacities P={P} V={V} A={A}",
         N::NAME
     );
 

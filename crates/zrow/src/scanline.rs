@@ -567,6 +567,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
 
     /// Polygon `i` enters the active list on row `y`, its first: its depth plane, and its two
     /// edges found down each side from its top vertex.
+    #[inline(never)]
     fn activate(&mut self, i: u16, y: i32, cfg: &Config, want_depth: bool) {
         let p = self.polygons[i as usize];
         let ring = Ring {
@@ -630,6 +631,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
 
     /// Insertion sort of the keys (left end, then slot): the order barely changes from row to
     /// row, and what moves are four-byte keys, compared as they are.
+    #[inline(never)]
     fn sort_active(&mut self) {
         let sorted = &mut self.sorted[..];
         for i in 1..sorted.len() {
