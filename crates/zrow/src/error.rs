@@ -68,8 +68,8 @@ pub enum Error {
         /// Face number.
         face: u32,
     },
-    /// Face `face` is not convex (its outline goes down and up more than once): split it into
-    /// triangles.
+    /// Face `face` is not convex (its outline goes down and up more than once, or clipping it
+    /// made more corners than a convex face can have): split it into triangles.
     NotConvex {
         /// Face number.
         face: u32,

@@ -95,6 +95,10 @@ impl<N: Scalar> ViewDepth<N> {
 type Poly<V> = Vec<V, MAX_POLYGON_VERTICES>;
 
 /// Sutherland–Hodgman against one plane. `cross(inside, outside)` makes the new vertex.
+///
+/// A convex polygon gains at most one vertex per plane, so a face within
+/// [`MAX_FACE_VERTICES`] stays within [`MAX_POLYGON_VERTICES`] after the six planes; more can
+/// only come from an outline that is not convex, which is [`Error::NotConvex`].
 fn clip_plane<V: Copy>(
     poly: &mut Poly<V>,
     inside: impl Fn(&V) -> bool,
@@ -109,7 +113,7 @@ fn clip_plane<V: Copy>(
     for k in 0..n {
         let (a, b) = (poly[k], poly[(k + 1) % n]);
         let (ia, ib) = (inside(&a), inside(&b));
-        let mut push = |v| out.push(v).map_err(|_| Error::TooManyVertices { face });
+        let mut push = |v| out.push(v).map_err(|_| Error::NotConvex { face });
         if ia {
             push(a)?;
         }

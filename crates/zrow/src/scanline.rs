@@ -238,7 +238,7 @@ pub struct Scanline<
     /// Pixels the active spans cover in the current row, summed (overlaps counted again).
     cover: i32,
     /// [`Scanline::resolve_by_depth`]'s hierarchical depth: the largest depth stored in each
-    /// block of [`HIZ_BLOCK`] pixels (or more, for rows wider than 1,024 pixels).
+    /// block of [`HIZ_BLOCK`] pixels (or more, for rows wider than 256 pixels).
     hiz: [N; HIZ_BLOCKS],
 }
 
@@ -267,8 +267,8 @@ const HEAVY_COVER: i32 = 2;
 /// Pixels in a block of [`Scanline::resolve_by_depth`]'s hierarchical depth, for rows up to
 /// `HIZ_BLOCKS · HIZ_BLOCK` pixels wide (wider rows double it as often as needed).
 const HIZ_BLOCK: usize = 16;
-/// Blocks of the hierarchical depth.
-const HIZ_BLOCKS: usize = 64;
+/// Blocks of the hierarchical depth (64 bytes in a 32-bit format).
+const HIZ_BLOCKS: usize = 16;
 
 impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, S: Slot> Default
     for Scanline<N, W, V, P, A, S>
@@ -1380,15 +1380,45 @@ fn establish<N: Scalar>(active: &[Active<N>], open: &[u16], x: i32) -> (usize, u
 }
 
 /// RAM the scan-line renderer (`u16` slots) needs for a scene with these requirements, in
-/// bytes: its tables at exactly the sizes required plus its two rows.
+/// bytes: its tables at exactly the sizes required, its two rows and its fixed state —
+/// `Scanline::<N, W, V, P, A>::RAM_BYTES` with the capacities set to the requirements, but for
+/// the few bytes that align each table (tested).
 pub fn ram_bytes<N: Scalar>(req: &Requirements) -> usize {
     use core::mem::size_of;
-    req.vertices as usize * size_of::<RasterVertex<N>>()
+    size_of::<Scanline<N, 0, 0, 0, 0>>()
+        + req.vertices as usize * size_of::<RasterVertex<N>>()
         + req.polygons as usize * (size_of::<Polygon<u16>>() + size_of::<u16>())
         + req.active_polygons as usize
-            * (size_of::<Active<N>>()
-                + size_of::<u16>()
-                + size_of::<u32>()
-                + size_of::<(i32, u16)>())
+            * (size_of::<Active<N>>() + 2 * size_of::<u16>() + size_of::<u32>())
         + req.width as usize * (size_of::<N>() + size_of::<Rgb565>())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Q16_16, Q24_8};
+
+    /// `ram_bytes` is the struct's size at those capacities, but for the padding that aligns
+    /// each table (a few bytes each).
+    #[test]
+    fn ram_bytes_is_the_size_of_the_renderer() {
+        fn check<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize>() {
+            let req = Requirements {
+                polygons: P as u32,
+                edges: 0,
+                vertices: V as u32,
+                active_polygons: A as u32,
+                width: W as u16,
+            };
+            let (formula, size) = (ram_bytes::<N>(&req), Scanline::<N, W, V, P, A>::RAM_BYTES);
+            assert!(
+                formula <= size && size <= formula + 24,
+                "{formula} vs {size}"
+            );
+        }
+        check::<Q16_16, 240, 500, 454, 65>();
+        check::<f32, 240, 1200, 400, 297>();
+        check::<Q24_8, 64, 7, 3, 1>();
+        check::<Q16_16, 1, 0, 0, 0>();
+    }
 }
