@@ -7,8 +7,10 @@
 #
 # Runs emu/run.sh (which prints the bench lines and the table), computes the host's lines with
 # emu/host_hash, and compares method, scene, format, face count and frame hash line by line (ram= is the
-# guest's alone: table entries may be laid out differently on a 64-bit host). Exits non-zero on
-# any difference, on a missing frame, or if either side fails.
+# guest's alone: table entries may be laid out differently on a 64-bit host). Then checks every
+# frame's instruction count against its ceiling in emu/budget-CPU.txt (emu/budget.sh: more than
+# 1 % over fails). Exits non-zero on any difference, on a missing frame, on a frame over its
+# ceiling, or if either side fails.
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -42,3 +44,7 @@ else
   echo "emu-check: $((frames - failed)) passed, $failed failed"
   exit 1
 fi
+
+# The instruction budget: every frame within 1 % of its checked-in ceiling.
+echo
+bash "$here/budget.sh" check "$cpu"

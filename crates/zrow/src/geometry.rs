@@ -5,7 +5,7 @@
 //!   affine transform per object (summed exactly, rounded once: [`Affine::apply_checked`]),
 //!   then to clip space and, when it lies inside the view volume and the guard band
 //!   ([`GUARD_BAND`](crate::raster::GUARD_BAND) pixels round the viewport), straight to snapped
-//!   sub-pixels — once per vertex per frame, into the renderer's [`VertexBuffer`], whatever
+//!   sub-pixels — once per vertex per frame, into the renderer's [`VertexBuffer`](crate::scene::VertexBuffer), whatever
 //!   number of faces share it. A face whose vertices all made it is then a few index loads:
 //!   its **winding on the snapped vertices** decides back-facing (two multiplies, nothing
 //!   normalised; zero area counts as back-facing), and only faces that survive are lit: flat

@@ -932,7 +932,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 continue;
             }
             planes.ensure(a);
-            let (poly, dzdx) = (a.poly, a.plane.dzdx);
+            let dzdx = a.plane.dzdx;
             let (x0, x1) = (x0 as usize, x1 as usize);
             // Depth is linear along the row: its least over a stretch is at the stretch's
             // left end if it grows to the right, else at its right end.
@@ -944,6 +944,12 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                     z0.step(dzdx, len - 1)
                 }
             };
+            if x1 - x0 <= 1 << shift {
+                // A short span: tested pixel by pixel. The blocks' farthest depths stay upper
+                // bounds (writes only lower depths), so they stay right, if less tight.
+                test_pixels(a, x0, &mut depth[x0..x1], &mut owner[x0..x1]);
+                continue;
+            }
             let z_start = depth_at(a, x0 as i32);
             let blocks = &hiz[x0 >> shift..=(x1 - 1) >> shift];
             if near_of(z_start, (x1 - x0) as i32) > blocks[1..].iter().fold(blocks[0], max) {
@@ -962,31 +968,10 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 } else {
                     depth_at(a, b1 as i32 - 1)
                 };
-                if near <= hiz[b] {
-                    let mut wrote = false;
-                    let pixels = depth[b0..b1].iter_mut().zip(&mut owner[b0..b1]);
-                    if N::EXACT_STEPS {
-                        let mut z = z0;
-                        for (d, o) in pixels {
-                            if z < *d || (z == *d && poly < raw(*o)) {
-                                (*d, *o, wrote) = (z, of(poly), true);
-                            }
-                            z = z.step(dzdx, 1);
-                        }
-                    } else {
-                        for (x, (d, o)) in (b0 as i32..).zip(pixels) {
-                            let z = depth_at(a, x);
-                            if z < *d || (z == *d && poly < raw(*o)) {
-                                (*d, *o, wrote) = (z, of(poly), true);
-                            }
-                        }
-                    }
-                    if wrote {
-                        // The block's farthest depth now (pixels outside the span keep
-                        // theirs).
-                        let block = &depth[b << shift..((b + 1) << shift).min(w)];
-                        hiz[b] = block[1..].iter().fold(block[0], max);
-                    }
+                if near <= hiz[b] && test_pixels(a, b0, &mut depth[b0..b1], &mut owner[b0..b1]) {
+                    // The block's farthest depth now (pixels outside the span keep theirs).
+                    let block = &depth[b << shift..((b + 1) << shift).min(w)];
+                    hiz[b] = block[1..].iter().fold(block[0], max);
                 }
                 z0 = z0.step(dzdx, len);
                 b0 = b1;
@@ -1189,6 +1174,35 @@ fn edge_cue<N: Scalar>(c: &Cue<N>, plane: &DepthPlane<N>, w: &Walk, y: i32) -> [
 #[inline]
 fn span_cover(xl: i32, xr: i32, w: i32) -> i32 {
     (xr.min(w) - xl.max(0)).max(0)
+}
+
+/// Depth-tests one polygon's span into a piece of row (`depth` and `owner` from column `x0`):
+/// where it is nearer, or as near and first in the scene, it takes the pixel. Whether it took
+/// any.
+#[inline]
+fn test_pixels<N: Scalar>(a: &Active<N>, x0: usize, depth: &mut [N], owner: &mut [Rgb565]) -> bool {
+    let raw = |c: Rgb565| RawU16::from(c).into_inner();
+    let of = |v: u16| Rgb565::from(RawU16::new(v));
+    let (poly, dzdx) = (a.poly, a.plane.dzdx);
+    let mut wrote = false;
+    let pixels = depth.iter_mut().zip(owner);
+    if N::EXACT_STEPS {
+        let mut z = depth_at(a, x0 as i32);
+        for (d, o) in pixels {
+            if z < *d || (z == *d && poly < raw(*o)) {
+                (*d, *o, wrote) = (z, of(poly), true);
+            }
+            z = z.step(dzdx, 1);
+        }
+    } else {
+        for (x, (d, o)) in (x0 as i32..).zip(pixels) {
+            let z = depth_at(a, x);
+            if z < *d || (z == *d && poly < raw(*o)) {
+                (*d, *o, wrote) = (z, of(poly), true);
+            }
+        }
+    }
+    wrote
 }
 
 /// A sort key: the left end (biased to unsigned; spans lie within the guard band, far inside
