@@ -499,7 +499,7 @@ fn faces() -> impl Strategy<Value = Vec<(Vec<u16>, u8)>> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+    #![proptest_config(crate::common::proptest_config(300))]
 
     #[test]
     fn any_q16_16_input(bits in prop::collection::vec(any::<[i32; 3]>(), 0..9), faces in faces()) {

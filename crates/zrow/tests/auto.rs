@@ -232,7 +232,7 @@ fn ties_go_to_the_first_polygon() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+    #![proptest_config(crate::common::proptest_config(64))]
 
     /// Whenever the check says ordering is exact, it is — on random scenes (few of which
     /// pass) and on sparse ones (many of which do).

@@ -284,7 +284,7 @@ fn input() -> impl Strategy<Value = Input> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 600, ..ProptestConfig::default() })]
+    #![proptest_config(crate::common::proptest_config(600))]
 
     #[test]
     fn every_method_every_format_survives_extreme_input(input in input()) {

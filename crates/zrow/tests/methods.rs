@@ -96,7 +96,7 @@ fn polygon() -> impl Strategy<Value = Vec<[f32; 3]>> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+    #![proptest_config(crate::common::proptest_config(48))]
 
     #[test]
     fn every_method_equals_the_reference_q16_16(polys in prop::collection::vec(polygon(), 1..16)) {
@@ -176,7 +176,7 @@ mod no_panic {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+        #![proptest_config(crate::common::proptest_config(200))]
 
         #[test]
         fn any_q16_16_input(bits in prop::collection::vec(any::<[i32; 3]>(), 0..9), faces in faces()) {

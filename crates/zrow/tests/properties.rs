@@ -83,7 +83,7 @@ fn check<N: Scalar>(p: &Polys) -> Result<(), TestCaseError> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
+    #![proptest_config(crate::common::proptest_config(96))]
 
     #[test]
     fn scanline_equals_reference_q16_16(p in scene()) {
@@ -192,7 +192,7 @@ mod no_panic {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig { cases: 400, ..ProptestConfig::default() })]
+        #![proptest_config(crate::common::proptest_config(400))]
 
         #[test]
         fn any_q16_16_input(bits in prop::collection::vec(any::<[i32; 3]>(), 0..9), faces in faces(), model in any::<bool>()) {

@@ -619,7 +619,7 @@ fn any_bits(bits: &[[u32; 3]], faces: Vec<Vec<u16>>) {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+    #![proptest_config(crate::common::proptest_config(300))]
 
     /// Any bits at all as vertices, any faces: a whole frame or a typed error before any row.
     #[test]
