@@ -117,6 +117,20 @@ struct Ring<'a, N, S> {
     polygon: &'a Polygon<S>,
 }
 
+impl<N> Active<N> {
+    /// This row's span's left end (unclamped; the span `xl..xr` may be empty).
+    #[inline]
+    fn xl(&self) -> i32 {
+        self.left.dda.x
+    }
+
+    /// This row's span's right end (exclusive, unclamped).
+    #[inline]
+    fn xr(&self) -> i32 {
+        self.right.dda.x
+    }
+}
+
 impl Walk {
     const ZERO: Walk = Walk {
         dda: Dda::ZERO,
@@ -179,9 +193,6 @@ struct Active<N> {
     z_row: N,
     /// Whether `plane` and `z_row` are set.
     planed: bool,
-    /// This row's span: `xl..xr` (unclamped; may be empty).
-    xl: i32,
-    xr: i32,
     last_row: i16,
     /// Scene order: the index in the polygon table.
     poly: u16,
@@ -314,8 +325,6 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 },
                 z_row: N::ZERO,
                 planed: false,
-                xl: 0,
-                xr: 0,
                 last_row: 0,
                 poly: 0,
                 color: Rgb565::BLACK,
@@ -601,7 +610,6 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         a.left = left;
         a.right = right;
         a.planed = false;
-        (a.xl, a.xr) = (left.dda.x, right.dda.x);
         a.last_row = p.last_row;
         a.poly = i;
         a.color = p.color;
@@ -619,8 +627,8 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             a.cue[2..4].copy_from_slice(&edge_cue(&c, &a.plane, &right, y));
             (a.cue_last[0], a.cue_last[1]) = (left.last, right.last);
         }
-        self.cover += span_cover(a.xl, a.xr, cfg.width as i32);
-        let _ = self.sorted.push(key(a.xl, slot)); // at most A slots are occupied
+        self.cover += span_cover(a.xl(), a.xr(), cfg.width as i32);
+        let _ = self.sorted.push(key(a.xl(), slot)); // at most A slots are occupied
     }
 
     /// The frame's cue if it is interpolated affinely (down edges and across spans).
@@ -677,7 +685,6 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             } else {
                 next_edge(a, true, polygons, vertices, y + 1, cfg, edges);
             }
-            (a.xl, a.xr) = (a.left.dda.x, a.right.dda.x);
             // Exact formats step (the same bits); f32 evaluates, so no error accumulates.
             if a.planed {
                 a.z_row = if N::EXACT_STEPS {
@@ -686,8 +693,8 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                     a.plane.at(0, y + 1)
                 };
             }
-            cover += span_cover(a.xl, a.xr, w);
-            sorted[kept] = key(a.xl, slot);
+            cover += span_cover(a.xl(), a.xr(), w);
+            sorted[kept] = key(a.xl(), slot);
             kept += 1;
         }
         sorted.truncate(kept);
@@ -729,7 +736,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             while let Some(&key) = self.sorted.get(k) {
                 k += 1;
                 let (slot, xl) = (key as u16 as usize, key_left(key).max(cur));
-                if self.active[slot].xr > xl {
+                if self.active[slot].xr() > xl {
                     next = Some((slot, xl));
                     break;
                 }
@@ -741,7 +748,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             self.paint(cur, start, None, want_depth);
             cur = start;
             // Alone unless a later span opens before this one ends.
-            let xr = self.active[slot].xr;
+            let xr = self.active[slot].xr();
             let mut j = k;
             let mut alone = true;
             while let Some(&key) = self.sorted.get(j) {
@@ -749,7 +756,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 if xl >= xr {
                     break;
                 }
-                if self.active[key as u16 as usize].xr > xl.max(cur) {
+                if self.active[key as u16 as usize].xr() > xl.max(cur) {
                     alone = false;
                     break;
                 }
@@ -807,7 +814,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 }
                 k += 1;
                 let slot = key as u16 as usize;
-                if active[slot].xr > cur {
+                if active[slot].xr() > cur {
                     // Cannot fail: `open` has the active list's capacity.
                     let _ = open.push(slot as u16);
                     planes.ensure(&mut active[slot]);
@@ -822,7 +829,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             let next_start = sorted.get(k).map_or(w, |&key| key_left(key)).min(w);
             if front == NONE {
                 // Spans that closed behind the last front leave only now.
-                open.retain(|&i| active[i as usize].xr > cur);
+                open.retain(|&i| active[i as usize].xr() > cur);
                 if open.is_empty() {
                     return (cur, k); // nothing open: back to spans alone
                 }
@@ -831,7 +838,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 } else {
                     establish(active, open, cur)
                 };
-                front_xr = active[front].xr;
+                front_xr = active[front].xr();
                 stats.front_changes += 1;
             }
             let next = next_start.min(front_xr).min(until).min(w);
@@ -927,7 +934,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         hiz.fill(N::MAX);
         for &key in &self.sorted {
             let a = &mut self.active[key as u16 as usize];
-            let (x0, x1) = (a.xl.max(0), a.xr.min(width));
+            let (x0, x1) = (a.xl().max(0), a.xr().min(width));
             if x0 >= x1 {
                 continue;
             }
@@ -1355,7 +1362,7 @@ fn challenge<N: Scalar>(active: &[Active<N>], p: usize, q: usize, x: i32) -> Opt
     if !beats(active, p, q, x) {
         return None;
     }
-    let mut hi = active[p].xr.min(active[q].xr) - 1;
+    let mut hi = active[p].xr().min(active[q].xr()) - 1;
     if beats(active, p, q, hi) {
         return Some(i32::MAX);
     }
