@@ -17,6 +17,8 @@ pub const FOLEY: [(&str, &str, [f64; 3]); 3] = [
 
 /// The emulated scenes (zrow-scenes, 240 × 240): the same surfaces as the host's.
 pub const EMU_SCENES: [(&str, usize); 2] = [("foley100", 100), ("foley2500", 2_500)];
+/// An STM32F411's RAM (the board the firmware targets), in bytes.
+const F411_RAM: u64 = 128 * 1024;
 
 /// What a scene is: polygons, tables, depth complexity.
 #[derive(Clone, Copy, Debug)]
@@ -478,10 +480,15 @@ impl Report {
                 "RAM decides as much as time there: the z-buffer needs 345,600 bytes at any \
                  polygon count, more than an STM32F411's 128 KB; the scan-line's tables at \
                  exactly what `foley2500` requires take {} bytes (its `ram=`: \
-                 `zrow::scanline::ram_bytes`), so 2,500 on-screen polygons do not fit an F411 \
-                 either, while 100 take {} bytes. (The other methods' `ram=` are their renderers \
+                 `zrow::scanline::ram_bytes`), so 2,500 on-screen polygons {} an F411, \
+                 while 100 take {} bytes. (The other methods' `ram=` are their renderers \
                  as built, sized for `foley2500` with room to spare.)",
                 thousands(s.ram),
+                if s.ram <= F411_RAM {
+                    "fit in"
+                } else {
+                    "do not fit"
+                },
                 counts
                     .get("scanline", a)
                     .map_or("—".into(), |f| thousands(f.ram))
@@ -523,18 +530,43 @@ impl Report {
         write!(
             d,
             "Time is not the only limit: an F411 has 128 KB of RAM, so the z-buffer \
-             ({} bytes at 240 × 240) does not fit at any polygon count, nor does any method \
-             whose polygon table holds 2,500 polygons. The methods that stream rows with RAM \
-             that follows the scene are the scan-line method (its tables sized by \
-             `zrow::requirements`: {} bytes at `{}`), the A-buffer and the tiled z-buffer (a \
-             band of depth instead of a frame). The scan-line method needs the least RAM; as \
-             polygons get small and many, the A-buffer and the tiled z-buffer spend fewer \
-             instructions for more RAM — the trade `auto` will weigh per scene.\n\n",
+             ({} bytes at 240 × 240) does not fit at any polygon count. The methods that \
+             stream rows with RAM that follows the scene are the scan-line method (its tables \
+             sized by `zrow::requirements`: {} bytes at `{}`, {} at `{}`), the A-buffer and the \
+             tiled z-buffer (a band of depth instead of a frame). ",
             ram("zbuffer", 0),
             ram("scanline", 0),
-            EMU_SCENES[0].0
+            EMU_SCENES[0].0,
+            ram("scanline", 1),
+            EMU_SCENES[1].0
         )
         .unwrap();
+        // Where a streaming method spends fewer instructions than the scan-line, for more RAM.
+        let streaming = ["abuffer", "tiled"];
+        let cheaper: Vec<String> = EMU_SCENES
+            .iter()
+            .flat_map(|&(scene, _)| {
+                let scan = counts.get("scanline", scene).map(|f| f.instructions);
+                streaming.iter().filter_map(move |&m| {
+                    let f = counts.get(m, scene)?;
+                    (f.instructions < scan?).then(|| format!("{m} at `{scene}`"))
+                })
+            })
+            .collect();
+        if cheaper.is_empty() {
+            d.push_str(
+                "Of these the scan-line method needs both the least RAM and the fewest \
+                 instructions at every size measured here.\n\n",
+            );
+        } else {
+            write!(
+                d,
+                "The scan-line method needs the least RAM; fewer instructions for more RAM: \
+                 {} — the trade `auto` will weigh per scene.\n\n",
+                cheaper.join(", ")
+            )
+            .unwrap();
+        }
         d
     }
 
