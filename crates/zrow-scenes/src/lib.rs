@@ -174,9 +174,9 @@ pub const LIGHT: ([f32; 3], f32) = ([0.4, 1.0, 0.7], 0.2);
 /// `MODEL_TURN.1`.
 pub const MODEL_TURN: (f32, f32) = (0.35, 0.2);
 
-/// The model scenes' camera (tangent by micromath).
+/// The model scenes' camera (tangent by libm, correctly rounded to f32's precision).
 pub fn camera<N: Scalar>() -> Option<Camera<N>> {
-    camera_with(MathLib::Micromath)
+    camera_with(MathLib::Libm)
 }
 
 /// The model scenes' camera, its tangent from `math`.
@@ -225,7 +225,7 @@ pub fn with_scene<N: Format, R>(
     angle: f32,
     f: impl FnOnce(&dyn Scene<N>, &Config, usize) -> R,
 ) -> Option<R> {
-    with_scene_math(name, angle, MathLib::Micromath, f)
+    with_scene_math(name, angle, MathLib::Libm, f)
 }
 
 /// [`with_scene`] with the model scenes' trig from `math`.

@@ -163,9 +163,10 @@ impl<N: Scalar> Affine<N> {
         Some(out)
     }
     /// Rotation about the y axis then the x axis (angles in radians) and a translation,
-    /// computed in `f32` with micromath and converted (see [`Affine::rotate_yx_translate_with`]).
+    /// computed in `f32` with libm's sines and cosines and converted
+    /// ([`Affine::rotate_yx_translate_with`] picks the maths).
     pub fn rotate_yx_translate(yaw: f32, pitch: f32, t: [f32; 3]) -> Option<Self> {
-        Self::rotate_yx_translate_with(MathLib::Micromath, yaw, pitch, t)
+        Self::rotate_yx_translate_with(MathLib::Libm, yaw, pitch, t)
     }
     /// [`Affine::rotate_yx_translate`] with the sines and cosines from `math`.
     pub fn rotate_yx_translate_with(

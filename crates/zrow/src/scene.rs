@@ -200,10 +200,10 @@ impl<N: Scalar> Camera<N> {
         Some(Camera { view, projection })
     }
 
-    /// A perspective projection from a vertical field of view in radians (tangent by
-    /// micromath; see [`Camera::perspective_with`]).
+    /// A perspective projection from a vertical field of view in radians (tangent by libm;
+    /// [`Camera::perspective_with`] takes micromath's, cheaper and about 1 % off).
     pub fn perspective(fov_y: f32, near: f32, far: f32) -> Option<Projection<N>> {
-        Self::perspective_with(crate::math::MathLib::Micromath, fov_y, near, far)
+        Self::perspective_with(crate::math::MathLib::Libm, fov_y, near, far)
     }
 
     /// [`Camera::perspective`] with the tangent from `math`.
