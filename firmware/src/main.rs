@@ -116,7 +116,7 @@ fn main() -> ! {
         let angle = frame as f32 * 0.03;
         rows.wait_cycles = 0;
         let t0 = DWT::cycle_count();
-        let result = zrow_scenes::with_scene::<Q16_16, _>(name, angle, |scene, cfg, _| {
+        let result = zrow_scenes::with_demo::<Q16_16, _>(name, angle, |scene, cfg, _| {
             renderer.render(scene, cfg, &mut rows)
         });
         let cycles = DWT::cycle_count().wrapping_sub(t0);

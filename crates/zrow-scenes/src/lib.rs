@@ -243,6 +243,34 @@ pub fn with_scene_math<N: Format, R>(
     if name == "random400" || FOLEY.contains(&name) {
         return Some(f(&ScreenScene { mesh }, &Config::screen(SIZE, SIZE), faces));
     }
+    model(mesh, angle, math, f)
+}
+
+/// [`with_scene`] for the demo scenes ([`DEMOS`]) alone, with libm's trig: a program that
+/// shows only these (the board's demo) links only their meshes, not the comparison scenes'
+/// (which [`with_scene`]'s lookup by name keeps in flash). `None` for another name.
+pub fn with_demo<N: Format, R>(
+    name: &str,
+    angle: f32,
+    f: impl FnOnce(&dyn Scene<N>, &Config, usize) -> R,
+) -> Option<R> {
+    let math = MathLib::Libm;
+    match name {
+        "interlocked" => interlocked(angle, math, f),
+        "cube" => model(Mesh::new(N::cube(), &meshes::CUBE_FACES), angle, math, f),
+        "mesh1k" => model(Mesh::new(N::torus(), &meshes::TORUS_FACES), angle, math, f),
+        _ => None,
+    }
+}
+
+/// A model scene of one mesh, turned by `angle`, as the standard camera and light see it.
+fn model<N: Format, R>(
+    mesh: Mesh<'static, N>,
+    angle: f32,
+    math: MathLib,
+    f: impl FnOnce(&dyn Scene<N>, &Config, usize) -> R,
+) -> Option<R> {
+    let faces = mesh.faces.len();
     let objects = [Object {
         mesh: &mesh,
         transform: Affine::rotate_yx_translate_with(

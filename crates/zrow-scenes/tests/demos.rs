@@ -16,9 +16,10 @@ fn demos_fit_the_board_renderer_over_a_full_turn() {
             .unwrap();
             worst = worst.max(req);
         }
-        // firmware/src/main.rs: Scanline<Q16_16, 240, 1344, 480, 72>.
+        // firmware/src/main.rs: Scanline<Q16_16, 240, 1344, 480, 72> (vertex buffer,
+        // polygons, active list).
         assert!(
-            worst.polygons <= 480 && worst.edges <= 1344 && worst.active_polygons <= 72,
+            worst.vertices <= 1344 && worst.polygons <= 480 && worst.active_polygons <= 72,
             "{name}: {worst:?}"
         );
         assert!(worst.polygons > 0, "{name} draws nothing");
@@ -35,4 +36,30 @@ fn interlocked_rings_intersect() {
     })
     .unwrap();
     assert!(stats.crossings > 0, "{stats:?}");
+}
+
+/// `with_demo` (the board's lookup, which links only the demos' meshes) draws what
+/// `with_scene` draws, frame for frame.
+#[test]
+fn with_demo_draws_what_with_scene_draws() {
+    let mut r = Box::new(Scanline::<Q16_16, 240, 4096, 1024, 256>::new());
+    for name in zrow_scenes::DEMOS {
+        for angle in [0.0, 0.7, 2.9] {
+            let mut hash = |via_demo: bool| {
+                let draw = |scene: &dyn zrow::Scene<Q16_16>, cfg: &zrow::Config, _| {
+                    let mut h = zrow_scenes::FrameHash::default();
+                    r.render(scene, cfg, &mut h).unwrap();
+                    h
+                };
+                if via_demo {
+                    zrow_scenes::with_demo::<Q16_16, _>(name, angle, draw)
+                } else {
+                    zrow_scenes::with_scene::<Q16_16, _>(name, angle, draw)
+                }
+                .unwrap()
+            };
+            assert_eq!(hash(true), hash(false), "{name} at {angle}");
+        }
+    }
+    assert!(zrow_scenes::with_demo::<Q16_16, _>("foley100", 0.0, |_, _, _| ()).is_none());
 }
