@@ -398,10 +398,14 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             // Past a capacity, keep counting so the error can say what the scene needs.
             uncached |= !poly.cached;
             if poly.cached && table.len() < P {
-                let mut corners = [S::from_slot(0); INDEXED_CORNERS];
-                for (c, &k) in corners.iter_mut().zip(poly.corners) {
-                    *c = S::from_slot(k); // the buffer has at most S::MAX_SLOTS slots
-                }
+                let corners = if n <= INDEXED_CORNERS {
+                    top_first(poly.corners, at)
+                } else {
+                    // A run of consecutive slots: only its first is kept.
+                    let mut c = [S::from_slot(0); INDEXED_CORNERS];
+                    c[0] = S::from_slot(poly.corners[0]);
+                    c
+                };
                 let _ = table.push(Polygon {
                     corners,
                     len: n as u8,
@@ -1085,8 +1089,8 @@ fn triangle_walks<N: Copy, S: Slot>(
     cfg: &Config,
 ) -> (Option<Walk>, Option<Walk>) {
     let v = [*ring.get(0), *ring.get(1), *ring.get(2)];
-    let t = top_of(ring);
-    let (f, b) = ((t + 1) % 3, (t + 2) % 3);
+    // Recorded from its top vertex ([`top_first`]).
+    let (t, f, b) = (0, 1, 2);
     let (s, h, height) = (cfg.subpixel_bits as u32, cfg.half(), cfg.height as i32);
     // The edge from vertex `p` down to `q`, if it covers row `y`.
     let edge = |p: usize, q: usize| {
@@ -1311,22 +1315,53 @@ impl<N: Scalar, S: Slot> Planes<'_, N, S> {
 }
 
 /// The top-left vertex of a polygon (least y, then least x): where both its sides start.
+/// A polygon of up to [`INDEXED_CORNERS`] corners is recorded from it ([`top_first`]).
 fn top_of<N: Copy, S: Slot>(ring: &Ring<'_, N, S>) -> usize {
-    if ring.len() == 3 {
-        let v = |k: usize| {
-            let p = ring.get(k);
-            (p.y, p.x)
-        };
-        let (a, b, c) = (v(0), v(1), v(2));
+    if ring.len() <= INDEXED_CORNERS {
+        return 0;
+    }
+    top_index(ring.len(), |k| ring.get(k))
+}
+
+/// Of `n` vertices, the top-left one (least y, then least x).
+#[inline]
+fn top_index<'a, N: 'a>(n: usize, v: impl Fn(usize) -> &'a RasterVertex<N>) -> usize {
+    if n == 3 {
+        let p = |k: usize| (v(k).y, v(k).x);
+        let (a, b, c) = (p(0), p(1), p(2));
         return match (a <= b, a <= c, b <= c) {
             (true, true, _) => 0,
             (false, _, true) => 1,
             _ => 2,
         };
     }
-    (0..ring.len())
-        .min_by_key(|&k| (ring.get(k).y, ring.get(k).x))
-        .unwrap_or(0)
+    (0..n).min_by_key(|&k| (v(k).y, v(k).x)).unwrap_or(0)
+}
+
+/// A polygon's indexed corners turned to start at its top-left vertex (the same ring, so the
+/// same winding): activation then starts both sides at corner 0.
+#[inline]
+fn top_first<'a, S: Slot, N: 'a>(
+    slots: &[u32],
+    at: impl Fn(usize) -> &'a RasterVertex<N>,
+) -> [S; INDEXED_CORNERS] {
+    let n = slots.len();
+    let top = top_index(n, at);
+    // The buffer has at most S::MAX_SLOTS slots.
+    let c = |k: usize| S::from_slot(slots[k]);
+    let zero = S::from_slot(0);
+    if let [_, _, _] = slots {
+        return match top {
+            0 => [c(0), c(1), c(2), zero],
+            1 => [c(1), c(2), c(0), zero],
+            _ => [c(2), c(0), c(1), zero],
+        };
+    }
+    let mut corners = [zero; INDEXED_CORNERS];
+    for (k, corner) in corners.iter_mut().take(n).enumerate() {
+        *corner = c(if top + k >= n { top + k - n } else { top + k });
+    }
+    corners
 }
 
 /// The depth plane of a polygon through its vertices in canonical order (from the top-left
