@@ -936,6 +936,37 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         }
         let hiz = &mut self.hiz[..w.div_ceil(1 << shift)];
         hiz.fill(N::MAX);
+        // First the occluders: a span that covers a whole block bounds the depth the block
+        // ends with by its own farthest depth there (an end of the block: depth is linear,
+        // and its evaluation monotone), so before any pixel is tested every block starts
+        // with the least such bound. A block's bound only ever falls: it is at all times
+        // at least the farthest depth the block will end with, which is what passing a span
+        // over needs.
+        let block = 1usize << shift;
+        // Worth a pass only where spans are long: on average two blocks or more.
+        let long = self.cover as usize >= 2 * block * self.sorted.len();
+        for &key in self.sorted.iter().filter(|_| long) {
+            let a = &mut self.active[key as u16 as usize];
+            let (x0, x1) = (a.xl().max(0) as usize, a.xr().min(width).max(0) as usize);
+            let (first, end) = (x0.div_ceil(block), x1 >> shift);
+            if first >= end {
+                continue; // no whole block
+            }
+            planes.ensure(a);
+            let dzdx = a.plane.dzdx;
+            let rising = dzdx >= N::ZERO;
+            for (b, bound) in hiz.iter_mut().enumerate().take(end).skip(first) {
+                let far_x = if rising {
+                    ((b + 1) << shift) - 1
+                } else {
+                    b << shift
+                };
+                let far = depth_at(a, far_x as i32);
+                if far < *bound {
+                    *bound = far;
+                }
+            }
+        }
         for &key in &self.sorted {
             let a = &mut self.active[key as u16 as usize];
             let (x0, x1) = (a.xl().max(0), a.xr().min(width));
@@ -955,13 +986,17 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                     z0.step(dzdx, len - 1)
                 }
             };
+            let z_start = depth_at(a, x0 as i32);
             if x1 - x0 <= 1 << shift {
-                // A short span: tested pixel by pixel. The blocks' farthest depths stay upper
-                // bounds (writes only lower depths), so they stay right, if less tight.
-                test_pixels(a, x0, &mut depth[x0..x1], &mut owner[x0..x1]);
+                // A short span (one or two blocks): tested pixel by pixel unless its blocks'
+                // bounds pass it over. The bounds are left as they are (still bounds: writes
+                // only lower depths).
+                let bound = max(hiz[x0 >> shift], &hiz[(x1 - 1) >> shift]);
+                if near_of(z_start, (x1 - x0) as i32) <= bound {
+                    test_pixels(a, x0, &mut depth[x0..x1], &mut owner[x0..x1]);
+                }
                 continue;
             }
-            let z_start = depth_at(a, x0 as i32);
             let blocks = &hiz[x0 >> shift..=(x1 - 1) >> shift];
             if near_of(z_start, (x1 - x0) as i32) > blocks[1..].iter().fold(blocks[0], max) {
                 continue; // hidden all along
@@ -980,9 +1015,13 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                     depth_at(a, b1 as i32 - 1)
                 };
                 if near <= hiz[b] && test_pixels(a, b0, &mut depth[b0..b1], &mut owner[b0..b1]) {
-                    // The block's farthest depth now (pixels outside the span keep theirs).
+                    // The block's farthest depth now (pixels outside the span keep theirs),
+                    // if below its bound.
                     let block = &depth[b << shift..((b + 1) << shift).min(w)];
-                    hiz[b] = block[1..].iter().fold(block[0], max);
+                    let now = block[1..].iter().fold(block[0], max);
+                    if now < hiz[b] {
+                        hiz[b] = now;
+                    }
                 }
                 z0 = z0.step(dzdx, len);
                 b0 = b1;
