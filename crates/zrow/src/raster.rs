@@ -474,6 +474,44 @@ pub fn outline_with_area<'a, T: Copy + 'a>(
     }))
 }
 
+/// [`outline_with_area`] of a triangle whose corners are at hand (the hot path of a mesh: no
+/// loop, each corner read once), with its top-left corner (least y, then least x). A
+/// triangle is always y-monotone, so there is no error to report.
+#[inline]
+pub(crate) fn outline_triangle<T>(
+    v: [&RasterVertex<T>; 3],
+    area: i64,
+    cfg: &Config,
+) -> Option<(Outline, usize)> {
+    if area == 0 || (cfg.cull == Cull::Back && area > 0) {
+        return None;
+    }
+    let [a, b, c] = v;
+    let (s, h) = (cfg.subpixel_bits as u32, cfg.half());
+    let (xmin, xmax) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
+    if row_at_or_below(xmax, s, h) <= 0 || row_at_or_below(xmin, s, h) >= cfg.width as i32 {
+        return None;
+    }
+    let (ymin, ymax) = (a.y.min(b.y).min(c.y), a.y.max(b.y).max(c.y));
+    let first = row_at_or_below(ymin, s, h).max(0);
+    let last_row = row_at_or_below(ymax, s, h).min(cfg.height as i32) - 1;
+    if first > last_row {
+        return None;
+    }
+    let (ka, kb, kc) = ((a.y, a.x), (b.y, b.x), (c.y, c.x));
+    let top = match (ka <= kb, ka <= kc, kb <= kc) {
+        (true, true, _) => 0,
+        (false, _, true) => 1,
+        _ => 2,
+    };
+    let outline = Outline {
+        clockwise: area > 0,
+        first_row: first as i16,
+        last_row: last_row as i16,
+    };
+    Some((outline, top))
+}
+
 /// The non-horizontal edge from `p` down to `q` (`q.y > p.y`) on `side`, with the sample
 /// rows it crosses on screen; `None` if it crosses none.
 pub(crate) fn edge_between<T: Copy>(
@@ -605,6 +643,55 @@ mod tests {
             }
         }
         assert!(fast > 20_000, "the fast path ran {fast} times");
+    }
+
+    #[test]
+    fn outline_triangle_equals_the_general_outline() {
+        // Triangles of every size and place (on and off screen, degenerate ones too), both
+        // windings, with and without culling: the same outline as the general path, and the
+        // top-left corner is the least (y, x).
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = |m: i64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % (2 * m as u64 + 1)) as i64 - m
+        };
+        let (mut drawn, mut ties) = (0, 0);
+        for k in 0..20_000 {
+            let s = 1 + (k % 8) as u32;
+            let cfg = Config {
+                cull: if k % 3 == 0 { Cull::Back } else { Cull::None },
+                subpixel_bits: s as u8,
+                ..Config::screen(64 + (k % 7) as u16 * 30, 48 + (k % 5) as u16 * 40)
+            };
+            let scale = [3, 40, 300][k % 3] << s;
+            let mut v = [RasterVertex {
+                x: 0,
+                y: 0,
+                z: 0i32,
+            }; 3];
+            for p in &mut v {
+                (p.x, p.y) = (
+                    next(scale) as i32 + (100 << s),
+                    next(scale) as i32 + (80 << s),
+                );
+            }
+            if k % 10 == 0 {
+                v[1].y = v[0].y; // a flat top or bottom: ties in y
+                ties += 1;
+            }
+            let area = signed_area2(&v);
+            let general = outline_with_area(3, |i| &v[i], area, &cfg, 0).unwrap();
+            let fast = outline_triangle([&v[0], &v[1], &v[2]], area, &cfg);
+            assert_eq!(general, fast.map(|(o, _)| o), "{v:?} {cfg:?}");
+            if let Some((_, top)) = fast {
+                let least = (0..3).min_by_key(|&i| (v[i].y, v[i].x)).unwrap();
+                assert_eq!(top, least, "{v:?}");
+                drawn += 1;
+            }
+        }
+        assert!(drawn > 5_000 && ties > 1_000, "{drawn} drawn, {ties} ties");
     }
 
     #[test]

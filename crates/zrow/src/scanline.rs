@@ -44,7 +44,8 @@ use crate::geometry::shade;
 use crate::method::{FrameStats, Renderer};
 use crate::number::{DepthPlane, Scalar};
 use crate::raster::{
-    canonical, outline_with_area, row_at_or_below, Config, Dda, RasterVertex, MAX_POLYGON_VERTICES,
+    canonical, outline_triangle, outline_with_area, row_at_or_below, Config, Dda, RasterVertex,
+    MAX_POLYGON_VERTICES,
 };
 use crate::requirements::Requirements;
 use crate::scene::{Scene, VertexBuffer, INDEXED_CORNERS};
@@ -391,21 +392,39 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         scene.polygons(cfg, &mut buf, &mut |poly| {
             let n = poly.corners.len();
             let at = |k: usize| &poly.vertices[poly.corners[k] as usize];
-            let Some(o) = outline_with_area(n, at, poly.area2, cfg, poly.face)? else {
-                return Ok(());
-            };
-            polys += 1;
-            // Past a capacity, keep counting so the error can say what the scene needs.
-            uncached |= !poly.cached;
-            if poly.cached && table.len() < P {
+            // The buffer has at most S::MAX_SLOTS slots.
+            let slot = |k: usize| S::from_slot(poly.corners[k]);
+            let (o, corners) = if n == 3 {
+                let Some((o, top)) = outline_triangle([at(0), at(1), at(2)], poly.area2, cfg)
+                else {
+                    return Ok(());
+                };
+                // Recorded from its top-left corner (the same ring).
+                let zero = S::from_slot(0);
+                let corners = match top {
+                    0 => [slot(0), slot(1), slot(2), zero],
+                    1 => [slot(1), slot(2), slot(0), zero],
+                    _ => [slot(2), slot(0), slot(1), zero],
+                };
+                (o, corners)
+            } else {
+                let Some(o) = outline_with_area(n, at, poly.area2, cfg, poly.face)? else {
+                    return Ok(());
+                };
                 let corners = if n <= INDEXED_CORNERS {
                     top_first(poly.corners, at)
                 } else {
                     // A run of consecutive slots: only its first is kept.
                     let mut c = [S::from_slot(0); INDEXED_CORNERS];
-                    c[0] = S::from_slot(poly.corners[0]);
+                    c[0] = slot(0);
                     c
                 };
+                (o, corners)
+            };
+            polys += 1;
+            // Past a capacity, keep counting so the error can say what the scene needs.
+            uncached |= !poly.cached;
+            if poly.cached && table.len() < P {
                 let _ = table.push(Polygon {
                     corners,
                     len: n as u8,
