@@ -241,8 +241,9 @@ pub struct Scanline<
     open: Vec<u16, A>,
     depth: [N; W],
     intensity: [Rgb565; W],
-    /// This frame's depth cue, if shading is not flat.
-    cue: Option<Cue<N>>,
+    /// This frame's depth cue, if `cued` (shading is not flat): see [`Self::frame_cue`].
+    cue: Cue<N>,
+    cued: bool,
     /// Edges walked so far this frame (for [`FrameStats::edges`]).
     edges: u32,
     /// The row being drawn and what drawing it needs from the configuration.
@@ -340,7 +341,8 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             // are rewritten in full before each is sent.
             depth: [N::ZERO; W],
             intensity: [Rgb565::BLACK; W],
-            cue: None,
+            cue: Cue::UNSET,
+            cued: false,
             edges: 0,
             cover: 0,
             hiz: [N::ZERO; HIZ_BLOCKS],
@@ -380,7 +382,8 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         cfg: &Config,
     ) -> Result<FrameStats, Error> {
         cfg.validate(W)?;
-        self.cue = Cue::for_frame(scene, cfg)?;
+        let cue = Cue::for_frame(scene, cfg)?;
+        (self.cue, self.cued) = (cue.unwrap_or(Cue::UNSET), cue.is_some());
         self.polygons.clear();
         self.used = 0;
         self.cover = 0;
@@ -545,7 +548,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         let width = cfg.width as usize;
         let want_depth = K::WANTS_DEPTH
             || self
-                .cue
+                .frame_cue()
                 .is_some_and(|c| c.interpolation == Interpolation::PerspectiveCorrect);
         let mut cursor = 0;
         for y in 0..cfg.height as i32 {
@@ -570,7 +573,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 s: cfg.subpixel_bits as u32,
                 background: cfg.background,
                 cue: self
-                    .cue
+                    .frame_cue()
                     .is_some_and(|c| c.interpolation == Interpolation::Affine),
                 stale,
                 fresh: (width as i32, 0),
@@ -578,7 +581,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             self.resolve_row(want_depth, stats);
             let depth: &[N] = if want_depth {
                 Cue::shade_row_if_perspective(
-                    &self.cue,
+                    &self.frame_cue(),
                     &self.depth[..width],
                     &mut self.intensity[..width],
                 );
@@ -654,9 +657,14 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         let _ = self.sorted.push(key(a.xl(), slot)); // at most A slots are occupied
     }
 
+    /// The frame's cue, if shading is not flat.
+    fn frame_cue(&self) -> Option<Cue<N>> {
+        self.cued.then_some(self.cue)
+    }
+
     /// The frame's cue if it is interpolated affinely (down edges and across spans).
     fn affine_cue(&self) -> Option<Cue<N>> {
-        self.cue
+        self.frame_cue()
             .filter(|c| c.interpolation == Interpolation::Affine)
     }
 

@@ -89,6 +89,20 @@ pub struct Cue<N> {
 }
 
 impl<N: Scalar> Cue<N> {
+    /// A cue of all-zero bits that shades nothing: the placeholder of a renderer that keeps
+    /// its cue beside a flag, so that the renderer built in a `static` is all zero and lands
+    /// in `.bss` instead of being copied from flash (an `Option` of a cue is not all zero).
+    pub(crate) const UNSET: Cue<N> = Cue {
+        view: ViewDepth::InverseW {
+            k: N::ZERO,
+            k_near: N::ZERO,
+        },
+        near: N::ZERO,
+        inv_span: N::ZERO,
+        drop: N::ZERO,
+        interpolation: Interpolation::Affine,
+    };
+
     /// The cue for one frame, or `None` for flat shading (or a scene without distances).
     /// [`Error::BadConfig`] if a parameter does not fit the format.
     pub fn for_frame(
