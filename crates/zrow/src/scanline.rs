@@ -468,7 +468,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         order.clear();
         if height > W {
             order.extend(0..polygons.len() as u16);
-            order.sort_unstable_by_key(|&i| (polygons[i as usize].first_row, i));
+            heapsort_by_key(order, |i| (polygons[i as usize].first_row, i));
             return;
         }
         // The counters are u16 (the polygon table holds fewer than 2^16), kept as Rgb565's
@@ -1302,6 +1302,34 @@ fn depth_at<N: Scalar>(a: &Active<N>, x: i32) -> N {
     a.z_row.step(a.plane.dzdx, x)
 }
 
+/// Sorts `v` by `key` (keys all distinct, so order among equals does not arise): a heapsort,
+/// a few hundred bytes of code where the library's sort would add several kilobytes to a
+/// firmware that rarely needs it (frames taller than the row is wide).
+fn heapsort_by_key<K: Ord>(v: &mut [u16], key: impl Fn(u16) -> K) {
+    let sift = |v: &mut [u16], mut root: usize, end: usize| loop {
+        let mut child = 2 * root + 1;
+        if child >= end {
+            return;
+        }
+        if child + 1 < end && key(v[child]) < key(v[child + 1]) {
+            child += 1;
+        }
+        if key(v[root]) >= key(v[child]) {
+            return;
+        }
+        v.swap(root, child);
+        root = child;
+    };
+    let n = v.len();
+    for root in (0..n / 2).rev() {
+        sift(v, root, n);
+    }
+    for end in (1..n).rev() {
+        v.swap(0, end);
+        sift(v, 0, end);
+    }
+}
+
 /// Fills a run of pixels with one colour, eight at a time (unrolled halfword stores: about
 /// one instruction a pixel, against three for a plain loop).
 #[inline]
@@ -1519,6 +1547,31 @@ pub fn ram_bytes<N: Scalar>(req: &Requirements) -> usize {
 mod tests {
     use super::*;
     use crate::{Q16_16, Q24_8};
+
+    #[test]
+    fn heapsort_sorts() {
+        let mut seed = 0x1234_5678u32;
+        for n in [0usize, 1, 2, 3, 7, 64, 455] {
+            let mut keys = [0i16; 455];
+            for k in &mut keys[..n] {
+                seed ^= seed << 13;
+                seed ^= seed >> 17;
+                seed ^= seed << 5;
+                *k = (seed % 300) as i16;
+            }
+            let mut v = [0u16; 455];
+            for (i, x) in v.iter_mut().enumerate() {
+                *x = i as u16;
+            }
+            let mut want = v;
+            heapsort_by_key(&mut v[..n], |i| (keys[i as usize], i));
+            want[..n].sort_unstable_by_key(|&i| (keys[i as usize], i));
+            assert_eq!(v, want, "n {n}");
+            assert!(v[..n]
+                .windows(2)
+                .all(|w| keys[w[0] as usize] <= keys[w[1] as usize]));
+        }
+    }
 
     /// `ram_bytes` is the struct's size at those capacities, but for the padding that aligns
     /// each table (a few bytes each).
