@@ -70,17 +70,42 @@ impl<N> RowSink<N> for FrameBuffer<'_> {
     }
 }
 
-/// Sends rows to any embedded-graphics [`DrawTarget`] (a display driver, the simulator).
+/// Sends rows to any embedded-graphics [`DrawTarget`] (a display driver, the simulator, a
+/// frame buffer) whose colour converts from [`Rgb565`] (`Rgb565` itself, `Rgb888`, `Gray8`,
+/// `BinaryColor` by embedded-graphics' threshold, ...). Rows and columns outside the target's
+/// bounding box are left out, so a frame larger than the display is clipped, never drawn out of
+/// bounds.
 pub struct DrawTargetSink<'a, D>(pub &'a mut D);
 
-impl<N, D: DrawTarget<Color = Rgb565>> RowSink<N> for DrawTargetSink<'_, D> {
+impl<N, D> RowSink<N> for DrawTargetSink<'_, D>
+where
+    D: DrawTarget,
+    D::Color: From<Rgb565>,
+{
     type Error = D::Error;
     const WANTS_DEPTH: bool = false;
     fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), D::Error> {
-        let area = Rectangle::new(
-            Point::new(0, row.y as i32),
-            Size::new(row.intensity.len() as u32, 1),
+        let bounds = self.0.bounding_box();
+        let (top, left) = (bounds.top_left.y as i64, bounds.top_left.x as i64);
+        let (bottom, right) = (
+            top + bounds.size.height as i64,
+            left + bounds.size.width as i64,
         );
-        self.0.fill_contiguous(&area, row.intensity.iter().copied())
+        let y = row.y as i64;
+        if y < top || y >= bottom {
+            return Ok(());
+        }
+        // Columns of the row that land on the target: left.max(0) .. right.min(len).
+        let x0 = left.max(0) as usize;
+        let x1 = (right.max(0) as usize).min(row.intensity.len());
+        let Some(pixels) = row.intensity.get(x0..x1) else {
+            return Ok(()); // nothing of this row is on the target
+        };
+        let area = Rectangle::new(
+            Point::new(x0 as i32, row.y as i32),
+            Size::new(pixels.len() as u32, 1),
+        );
+        self.0
+            .fill_contiguous(&area, pixels.iter().map(|&c| D::Color::from(c)))
     }
 }

@@ -87,3 +87,65 @@ fn piercing_triangles_picture() {
     piercing::<Q16_16>();
     piercing::<f32>();
 }
+
+/// A frame bigger than the display (128x128 into MockDisplay's 64x64, which panics on any
+/// pixel drawn outside it or twice) is clipped to the display: each of its pixels drawn once,
+/// as the frame has it; and a display in another colour type gets embedded-graphics'
+/// conversion of the same frame.
+#[test]
+fn the_draw_target_sink_clips_and_converts() {
+    use embedded_graphics::pixelcolor::{BinaryColor, Gray8, Rgb888};
+    use embedded_graphics::prelude::*;
+    use zrow::FrameBuffer;
+    let v: Vec<Vec3<Q16_16>> = [
+        [-10.0, -10.0, 1.0],
+        [140.0, 20.0, 2.0],
+        [30.0, 140.0, 3.0],
+        [100.0, 0.0, 0.5],
+        [128.0, 128.0, 0.5],
+        [60.0, 120.0, 0.5],
+    ]
+    .iter()
+    .map(|p| Vec3::from_f32(*p).unwrap())
+    .collect();
+    let f = [
+        Face::new(&[0, 1, 2], Rgb565::RED),
+        Face::new(&[3, 4, 5], Rgb565::new(3, 40, 28)),
+    ];
+    let scene = ScreenScene {
+        mesh: Mesh::new(&v, &f),
+    };
+    let cfg = Config::screen(128, 128);
+    let mut r = Box::new(Scanline::<Q16_16, 128, 32, 8, 8>::new());
+    let mut frame = vec![Rgb565::BLACK; 128 * 128];
+    r.render(&scene, &cfg, &mut FrameBuffer::new(&mut frame, 128))
+        .unwrap();
+    let at = |x: i32, y: i32| frame[y as usize * 128 + x as usize];
+    assert!(frame.iter().any(|&c| c != Rgb565::BLACK) && frame[..64].contains(&Rgb565::RED));
+
+    let mut display = MockDisplay::<Rgb565>::new();
+    r.render(&scene, &cfg, &mut DrawTargetSink(&mut display))
+        .unwrap();
+    for p in display.bounding_box().points() {
+        assert_eq!(display.get_pixel(p), Some(at(p.x, p.y)), "{p:?}");
+    }
+
+    fn converted<C>(
+        r: &mut Scanline<Q16_16, 128, 32, 8, 8>,
+        scene: &ScreenScene<'_, Q16_16>,
+        cfg: &Config,
+        at: impl Fn(i32, i32) -> Rgb565,
+    ) where
+        C: PixelColor + From<Rgb565> + std::fmt::Debug,
+    {
+        let mut display = MockDisplay::<C>::new();
+        r.render(scene, cfg, &mut DrawTargetSink(&mut display))
+            .unwrap();
+        for p in display.bounding_box().points() {
+            assert_eq!(display.get_pixel(p), Some(C::from(at(p.x, p.y))), "{p:?}");
+        }
+    }
+    converted::<Rgb888>(&mut r, &scene, &cfg, at);
+    converted::<Gray8>(&mut r, &scene, &cfg, at);
+    converted::<BinaryColor>(&mut r, &scene, &cfg, at);
+}
