@@ -151,6 +151,7 @@ impl core::fmt::Display for Error {
 
 /// A render that failed: either the scene (before any row was sent) or the sink.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum RenderError<E> {
     /// The scene or configuration was rejected; no row was sent.
     Scene(Error),
@@ -161,5 +162,55 @@ pub enum RenderError<E> {
 impl<E> From<Error> for RenderError<E> {
     fn from(e: Error) -> Self {
         RenderError::Scene(e)
+    }
+}
+
+impl<E: core::fmt::Display> core::fmt::Display for RenderError<E> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            RenderError::Scene(e) => write!(f, "scene rejected before any row: {e}"),
+            RenderError::Sink(e) => write!(f, "row sink failed: {e}"),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A render error prints as the scene's error or the sink's, saying which.
+    #[test]
+    fn render_errors_print() {
+        let scene: RenderError<core::convert::Infallible> =
+            RenderError::Scene(Error::NotConvex { face: 7 });
+        let mut buf = [0u8; 64];
+        let mut w = Buf(&mut buf, 0);
+        core::fmt::write(&mut w, format_args!("{scene}")).unwrap();
+        assert_eq!(
+            w.text(),
+            "scene rejected before any row: face 7: not convex"
+        );
+        let sink: RenderError<&str> = RenderError::Sink("SPI timeout");
+        let mut w = Buf(&mut buf, 0);
+        core::fmt::write(&mut w, format_args!("{sink}")).unwrap();
+        assert_eq!(w.text(), "row sink failed: SPI timeout");
+    }
+
+    struct Buf<'a>(&'a mut [u8], usize);
+    impl Buf<'_> {
+        fn text(&self) -> &str {
+            core::str::from_utf8(&self.0[..self.1]).unwrap()
+        }
+    }
+    impl core::fmt::Write for Buf<'_> {
+        fn write_str(&mut self, s: &str) -> core::fmt::Result {
+            let end = self.1 + s.len();
+            self.0
+                .get_mut(self.1..end)
+                .ok_or(core::fmt::Error)?
+                .copy_from_slice(s.as_bytes());
+            self.1 = end;
+            Ok(())
+        }
     }
 }
