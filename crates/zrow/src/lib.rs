@@ -22,7 +22,8 @@
 //! ];
 //! let scene = ScreenScene { mesh: Mesh::new(&vertices, &faces) };
 //!
-//! // Capacities: 8-pixel rows, 2 polygons, 8 edges, 2 polygons active in a row.
+//! // Capacities: 8-pixel rows, 8 vertex slots, 2 polygons, 2 polygons active in a row
+//! // (`zrow::requirements` measures what a scene needs).
 //! let mut renderer = Scanline::<Q16_16, 8, 8, 2, 2>::new();
 //! let mut pixels = [Rgb565::BLACK; 8 * 8];
 //! let mut frame = FrameBuffer::new(&mut pixels, 8);
@@ -30,7 +31,24 @@
 //! assert_eq!(frame.pixel(3, 1), Some(Rgb565::RED)); // s1 is in front at (3, 1)
 //! ```
 //!
-//! The pipeline, in the order a frame goes through it:
+//! The pipeline, in the order a frame goes through it (the modules below, in that order):
+//!
+//! 1. [`number`]: the number formats ([`Q16_16`], [`Q24_8`], `f32`) behind [`Scalar`], with
+//!    exact rounding rules; [`math`]: vectors and affine transforms in any of them.
+//! 2. [`scene`]: meshes, objects, camera and light ([`ModelScene`]), or polygons already in
+//!    screen space ([`ScreenScene`]).
+//! 3. [`geometry`]: every vertex transformed, projected and snapped once, back faces culled by
+//!    their snapped winding ([`backface`]), the rest clipped to the view and the guard band
+//!    and lit ([`shading`] for the depth cue).
+//! 4. [`raster`]: the exact edge walk and its top-left fill rule, the polygons' outlines and
+//!    depth planes.
+//! 5. A hidden-surface method behind [`Renderer`]: the scan-line method ([`scanline`],
+//!    Foley & van Dam §15.6; Sutherland, Sproull & Schumacker 1974) by default, or the
+//!    z-buffer, its tiled 16-bit variant, depth sort (Newell, Newell & Sancha 1972), Warnock's
+//!    subdivision (1969), the BSP tree (Fuchs, Kedem & Naylor 1980), the A-buffer (Carpenter
+//!    1984), culling or ordering alone.
+//! 6. [`sink`]: finished rows, top to bottom, to a [`RowSink`]: memory ([`FrameBuffer`]), any
+//!    embedded-graphics display ([`DrawTargetSink`]), an SPI panel.
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
