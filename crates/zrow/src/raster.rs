@@ -488,17 +488,22 @@ pub(crate) fn outline_triangle<T>(
     }
     let [a, b, c] = v;
     let (s, h) = (cfg.subpixel_bits as u32, cfg.half());
+    // `row_at_or_below` without its overflow path: snapped corners lie within the guard band
+    // (below 2^21 sub-pixels), so `h − v` cannot overflow.
+    let row = |v: i32| -(h.wrapping_sub(v) >> s);
     let (xmin, xmax) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
-    if row_at_or_below(xmax, s, h) <= 0 || row_at_or_below(xmin, s, h) >= cfg.width as i32 {
+    if row(xmax) <= 0 || row(xmin) >= cfg.width as i32 {
         return None;
     }
     let (ymin, ymax) = (a.y.min(b.y).min(c.y), a.y.max(b.y).max(c.y));
-    let first = row_at_or_below(ymin, s, h).max(0);
-    let last_row = row_at_or_below(ymax, s, h).min(cfg.height as i32) - 1;
+    let first = row(ymin).max(0);
+    let last_row = row(ymax).min(cfg.height as i32) - 1;
     if first > last_row {
         return None;
     }
-    let (ka, kb, kc) = ((a.y, a.x), (b.y, b.x), (c.y, c.x));
+    // (y, x) in one ordered integer: a single comparison each.
+    let key = |v: &RasterVertex<T>| (v.y as i64) << 32 | (v.x as u32 ^ 0x8000_0000) as i64;
+    let (ka, kb, kc) = (key(a), key(b), key(c));
     let top = match (ka <= kb, ka <= kc, kb <= kc) {
         (true, true, _) => 0,
         (false, _, true) => 1,
