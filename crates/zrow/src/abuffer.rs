@@ -1,11 +1,10 @@
 //! Transparency in the A-buffer spirit: translucent faces blended over the opaque surface,
-//! one row at a time (seed 002, "Note" at 45:54–47:08; Carpenter's A-buffer).
+//! one row at a time (Carpenter's A-buffer, 1984; Foley, van Dam, Feiner & Hughes §15.4).
 //!
-//! Seed 002 closes its z-buffer lecture on the method's limit: a depth buffer keeps one depth
-//! and one colour per pixel, so "a pixel can have only one surface color". That is right for
-//! opaque surfaces; with transparent ones the pixel colour "is a combination of surface color +
-//! contributions from surfaces behind", and one depth per pixel "can't store all surfaces
-//! contributing to the color value". The seed points to the **A-buffer** for the fix:
+//! The z-buffer's limit: a depth buffer keeps one depth and one colour per pixel, so a pixel can
+//! have only one surface colour. That is right for opaque surfaces; with transparent ones the
+//! pixel colour combines the surface's colour with contributions from the surfaces behind, and
+//! one depth per pixel cannot store every surface contributing to it. The **A-buffer** fixes it:
 //! Carpenter's accumulation buffer keeps, per pixel, a *list* of the fragments that cover it,
 //! and resolves the list — sorted by depth — into one colour.
 //!

@@ -1,6 +1,6 @@
-//! The BSP tree (Fuchs, Kedem & Naylor), seed 001 "Binary Space Partition trees".
+//! The BSP tree (Fuchs, Kedem & Naylor 1980; Foley, van Dam, Feiner & Hughes §15.5.2).
 //!
-//! The seed's algorithm. **Build:** choose a polygon; its plane divides space in two; sort
+//! The algorithm. **Build:** choose a polygon; its plane divides space in two; sort
 //! the remaining polygons into those in front of it and those behind (by substituting their
 //! points in its plane equation); a polygon on both sides is split into two; redo this on each
 //! side until every subspace holds one polygon. **Render:** for a viewpoint V, at each node:
@@ -12,11 +12,11 @@
 //! Here the tree is built by inserting the polygons one at a time in scene order: each one
 //! descends from the root, going to the side of each node's plane it lies on, and is split
 //! where it straddles one; it becomes a node where it reaches an empty side. That is the
-//! seed's recursive build with "the first polygon of each subspace" as the chosen one.
+//! textbook's recursive build with the first polygon of each subspace as the chosen one.
 //!
 //! The tree is built over the frame's projected polygons, in screen space: perspective maps
 //! planes to planes and keeps sides, so it is a BSP tree of the view, and the viewpoint is at
-//! z = −∞ (the seeds' screen-space convention: smaller z is nearer). A polygon's front side is
+//! z = −∞ (screen space: smaller z is nearer). A polygon's front side is
 //! the viewer's side when it faces the viewer (counter-clockwise on the display), the far side
 //! when it does not. A static scene's tree could be built once in world space and reused for
 //! every view; here the scenes move, so the tree is rebuilt per frame.

@@ -1,8 +1,8 @@
-//! A precomputed BSP order for a static scene of convex solids, seed 001 ("Binary Space
-//! Partition trees"), made cheap: the tree is built **once**, over whole objects, and each frame
+//! A precomputed BSP order for a static scene of convex solids (the BSP tree of Fuchs, Kedem &
+//! Naylor 1980, Foley, van Dam, Feiner & Hughes §15.5.2), made cheap: the tree is built **once**, over whole objects, and each frame
 //! only walks it.
 //!
-//! The seed's BSP tree splits polygons by polygon planes so that, for any viewpoint, an in-order
+//! The BSP tree splits polygons by polygon planes so that, for any viewpoint, an in-order
 //! walk paints far to near. When a static scene is made of separate closed convex solids, a
 //! tree over the *objects* needs no split at all: a plane that leaves every object of a set
 //! wholly on one side (a face plane of one of them, when one exists) divides the set, and the

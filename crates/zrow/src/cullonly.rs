@@ -1,7 +1,7 @@
-//! Back-face culling alone, seed 000 §2.1 ("back-face removal"): for a single closed convex
+//! Back-face culling alone (Foley, van Dam, Feiner & Hughes §15.2.4): for a single closed convex
 //! object it is the whole of hidden-surface removal.
 //!
-//! The seeds' argument: a face whose outward normal points away from the viewer is hidden by
+//! The argument: a face whose outward normal points away from the viewer is hidden by
 //! the object itself; for a closed **convex** object every face that points towards the viewer
 //! is visible, whole, and no two of them overlap on the screen. So once back faces are culled
 //! ([`Config::cull`] = [`Cull::Back`](crate::Cull::Back)), painting the front faces in any

@@ -1,6 +1,7 @@
-//! Depth-sort (Newell, Newell & Sancha's painter's algorithm), seeds 001 and 003.
+//! Depth-sort (Newell, Newell & Sancha's painter's algorithm, 1972; Foley, van Dam, Feiner &
+//! Hughes §15.5.1).
 //!
-//! The seeds' algorithm, in three steps: sort the polygons by their farthest depth; resolve
+//! The algorithm, in three steps: sort the polygons by their farthest depth; resolve
 //! the ambiguities where depth extents overlap, splitting polygons where needed; then paint
 //! them far to near, so nearer ones overwrite farther ones. For the polygon `P` at the far
 //! end of the list and every `Q` whose depth extent overlaps `P`'s, up to five tests, in order

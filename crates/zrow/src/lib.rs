@@ -9,8 +9,8 @@
 //! use zrow::{Config, Face, FrameBuffer, Mesh, Q16_16, Scanline, ScreenScene, Vec3};
 //! use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 //!
-//! // Seed 002's two triangles (z = depth, smaller is nearer), moved half a pixel so that
-//! // pixel (3, 1)'s centre is the seed's point (3, 1).
+//! // Two triangles that pierce each other (z = depth, smaller is nearer), moved half a pixel
+//! // so that pixel (3, 1)'s centre is the point (3, 1) where s1 is in front.
 //! let q = |x: f32, y: f32, z: f32| Vec3::<Q16_16>::from_f32([x + 0.5, y + 0.5, z]).unwrap();
 //! let vertices = [
 //!     q(0.0, 0.0, 6.0), q(6.0, 0.0, 0.0), q(0.0, 6.0, 0.0), // s1
@@ -53,7 +53,7 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
-/// Back-face culling (the seeds' normal test), a stage any method can use.
+/// Back-face culling (the normal test), a stage any method can use.
 pub mod backface;
 /// Typed errors.
 pub mod error;

@@ -3,7 +3,7 @@
 //! A method takes a [`Scene`] in a number format `N`, a [`Config`] and a [`RowSink`], and sends
 //! the finished rows top to bottom, each once, with `intensity[x]` and `depth[x]`. Methods
 //! differ in what they keep between rows (see each one's `RAM_BYTES`) and in how they decide
-//! visibility; they agree on every convention of GUIDE §1 — coverage (exact top-left rule on
+//! visibility; they agree on every convention (README, Conventions) — coverage (exact top-left rule on
 //! the snapped vertices), depth planes (the same [`crate::number::DepthPlane`] bits) and ties
 //! (the polygon first in the scene wins) — so an exact method gives the same picture as any
 //! other.
@@ -56,7 +56,7 @@ pub struct FrameStats {
 /// are returned before the first row is sent, so a failed frame never corrupts what the sink
 /// already shows.
 pub trait Renderer<N: Scalar> {
-    /// The method's name, as `--algo` spells it (GUIDE §2).
+    /// The method's name, as `zrow-sim render --algo` spells it.
     const NAME: &'static str;
     /// Bytes of RAM the renderer occupies (all its tables and buffers).
     const RAM_BYTES: usize;

@@ -40,7 +40,7 @@ pub type Q24_8 = fixed::types::I24F8;
 /// The depth plane of one polygon, ready for incremental stepping.
 ///
 /// `z_ref` is the depth at the centre of pixel (`i_ref`, `j_ref`); moving one pixel right adds
-/// `dzdx` (the seeds' −A/C), one row down adds `dzdy` (the seeds' −B/C).
+/// `dzdx` (−A/C for the plane Ax + By + Cz + D = 0), one row down adds `dzdy` (−B/C).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DepthPlane<N> {
     /// Depth at the centre of the reference pixel.
@@ -86,7 +86,7 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     const ZERO: Self;
     /// One.
     const ONE: Self;
-    /// The largest value; a depth row is cleared to it (the seeds' "`depth[x]` = 1.0 (max value)").
+    /// The largest value; a depth row is cleared to it (the farthest depth: nothing drawn).
     const MAX: Self;
     /// Whether [`Scalar::step`] is exact (fixed point: wrapping integer steps equal the plane
     /// bit for bit), so a renderer may step a depth instead of evaluating the plane again.

@@ -1,5 +1,5 @@
 //! Ordering alone: the painter's algorithm where depth-sort's first step settles everything,
-//! seed 001 ("Depth-Sort", step 1: sort by depth; paint far to near).
+//! (Newell, Newell & Sancha 1972, step 1: sort by depth; paint far to near).
 //!
 //! When no two polygons that overlap on the screen overlap in depth, sorting by depth is the
 //! whole of hidden-surface removal: painting far to near leaves the nearer of any two

@@ -12,7 +12,7 @@
 //! - [`PolygonTable::span`](crate::polygons::PolygonTable::span) and [`PolygonTable::walk`](crate::polygons::PolygonTable::walk): the covered columns `xl..xr` of a row
 //!   (exactly the scan-line method's, from the same [`crate::raster::Dda`]s), at one row or row after row.
 //! - [`PolygonTable::beats`](crate::polygons::PolygonTable::beats): is `p` visible over `q` at a sample — nearer, or as near and
-//!   first in the scene (GUIDE §1)? Depth comes from the same [`DepthPlane`](crate::number::DepthPlane) bits every method
+//!   first in the scene (README, Conventions)? Depth comes from the same [`DepthPlane`](crate::number::DepthPlane) bits every method
 //!   uses, so every method breaks every tie the same way.
 //!
 //! Polygons keep their scene order: index `i` in the table is the `i`-th polygon the scene

@@ -10,7 +10,7 @@
 //!   `ceil((x_left − h)/2^S) .. ceil((x_right − h)/2^S)` (a left edge owns its samples, a right
 //!   edge does not): the top-left rule, so polygons sharing an edge never both cover, and never
 //!   both miss, a sample on it;
-//! - an edge's crossing moves by 1/m per row (the seeds' `x' = x + 1/m`), kept exactly as an
+//! - an edge's crossing moves by 1/m per row (the scan-line algorithm's `x' = x + 1/m`, Foley, van Dam, Feiner & Hughes §3.6), kept exactly as an
 //!   integer quotient and remainder ([`Dda`](crate::raster::Dda)), so no error accumulates down the edge.
 //!
 //! Zero area after snapping counts as back-facing and is dropped.
@@ -245,7 +245,7 @@ impl Edge {
 /// The exact per-row walk of one edge: `x` is the first pixel column whose centre is at or
 /// right of the edge's crossing with the current row's sample line.
 ///
-/// It is the seeds' `x += 1/m` with 1/m split into a whole step `qs` and a remainder `rs`
+/// It is the textbook `x += 1/m` with 1/m split into a whole step `qs` and a remainder `rs`
 /// over `den`, as Bresenham does: `x − r/den` is exactly `(crossing − h)/2^S`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct Dda {

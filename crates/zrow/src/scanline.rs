@@ -17,7 +17,7 @@
 //!   when an edge ends, the next one down the same chain takes over;
 //! - an **active list** holds the polygons the current row crosses, each with its left and
 //!   right edge stepped exactly (`x += 1/m`, see [`crate::raster::Dda`]) and its depth at its
-//!   left end, stepped down the edge by `dzdy + dzdx·Δx` — the seeds' `(A/m + B)/C` with the
+//!   left end, stepped down the edge by `dzdy + dzdx·Δx` — the textbook `(A/m + B)/C` (Foley, van Dam, Feiner & Hughes §15.6) with the
 //!   pixel steps the edge actually takes, so it equals the plane at every pixel centre.
 //!   Entries stay where they are; the row's order by left end is kept on four-byte keys (left
 //!   end, slot), nearly sorted from one row to the next;

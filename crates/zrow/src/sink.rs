@@ -6,7 +6,7 @@ use embedded_graphics_core::geometry::{Point, Size};
 use embedded_graphics_core::pixelcolor::Rgb565;
 use embedded_graphics_core::primitives::Rectangle;
 
-/// One finished row: the seeds' `intensity[x]` and `depth[x]`.
+/// One finished row: its `intensity[x]` and `depth[x]`.
 #[derive(Clone, Copy, Debug)]
 pub struct Row<'a, N> {
     /// Row number, 0 at the top.

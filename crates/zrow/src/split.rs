@@ -1,7 +1,8 @@
 //! Polygons split by another's plane, exactly — the pieces depth-sort and BSP order.
 //!
 //! Both object-order methods must sometimes cut a polygon in two by the plane of another
-//! (seed 001: "one of them must be split by using the plane of the other one"). In screen
+//! (one of them must be split by the plane of the other: Foley, van Dam, Feiner & Hughes
+//! §15.5). In screen
 //! space the two planes meet along the line where their depths are equal, so the part of `P`
 //! in front of `Q`'s plane is exactly the set of `P`'s samples where `P` beats `Q`
 //! ([`PolygonTable::beats`](crate::polygons::PolygonTable::beats): nearer, or as near and first in the scene). zrow keeps a piece as

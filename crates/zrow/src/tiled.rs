@@ -1,7 +1,8 @@
-//! The tiled 16-bit z-buffer: the z-buffer (seed 000 §2.2.1) one band of rows at a time, with
+//! The tiled 16-bit z-buffer: the z-buffer (Catmull 1974; Foley, van Dam, Feiner &
+//! Hughes §15.4) one band of rows at a time, with
 //! depth quantised to 16 bits over the frame's depth range — its form for a microcontroller.
 //!
-//! The seeds' z-buffer keeps `depth[x][y]` (set to the maximum) and `intensity[x][y]` (set to
+//! The z-buffer keeps `depth[x][y]` (set to the maximum) and `intensity[x][y]` (set to
 //! the background) for the whole frame, scan-converts each polygon in any order and keeps a
 //! pixel where the polygon's `z < depth[x][y]`. For 240×240 that is more RAM than an
 //! STM32F411 has ([`crate::zbuffer`]). Here the frame is cut into **bands** of `B` full rows —
@@ -38,7 +39,7 @@
 //! [`DepthPlane::at`] gives, a monotone function of depth. So two depths at least one step
 //! apart are always in the right order, and equal depths (coplanar polygons have identical
 //! plane bits) get equal `q`, where the strict `<` and scene order give the pixel to the
-//! polygon first in the scene (GUIDE §1), as in every method. Nearer than one step, two
+//! polygon first in the scene (README, Conventions), as in every method. Nearer than one step, two
 //! polygons may tie and the earlier wins: that is the resolution a 16-bit buffer has.
 //! [`Quantisation::exact`] reports it.
 //!

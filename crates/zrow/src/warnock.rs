@@ -1,15 +1,14 @@
-//! Warnock's area subdivision, seed 000 §2.2.3, seed 001 ("Area Subdivision - Warnock") and
-//! seed 003.
+//! Warnock's area subdivision (Warnock 1969; Foley, van Dam, Feiner & Hughes §15.7.1).
 //!
-//! The seeds' algorithm: a polygon is **surrounding**, **intersecting**, **contained** in or
+//! The algorithm: a polygon is **surrounding**, **intersecting**, **contained** in or
 //! **disjoint** from an area of the screen, as the min-max (bounding box), intersection and
 //! containment tests find. An area's potentially-visible polygon list (PVPL) holds the
 //! non-disjoint ones sorted by `zmin`, their least depth in the area; a polygon `P` with
 //! `z_pmin > z_smax` (the greatest depth of a surrounding `S` in the area) is hidden by `S`, and
-//! so is every polygon after it. Then (seed 000 step 3): (a) an empty list is background;
+//! so is every polygon after it. Then: (a) an empty list is background;
 //! (b) one intersecting or contained polygon: background, then its part scan-converted; (c) one
 //! surrounding polygon fills the area; (d) at one pixel, the polygon nearest at its centre;
-//! (case 4 of the seeds) a surrounding polygon in front of all others at the area's four
+//! (the fourth case) a surrounding polygon in front of all others at the area's four
 //! corners fills it; otherwise the area is cut in four and each quarter goes back to the list
 //! step. Surrounding and disjoint polygons stay so in sub-areas; only the others are
 //! classified again.
@@ -462,7 +461,7 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, 
     }
 
     /// A surrounding polygon that beats every other listed polygon at every sample the other
-    /// covers in the area (seed case 4), if there is one.
+    /// covers in the area (the fourth case), if there is one.
     fn front_surrounding(&self, start: usize, r: &Rect) -> Option<usize> {
         let list = self.list.get(start..).unwrap_or(&[]);
         if !list.iter().all(|e| self.is_linear(e.poly as usize)) {

@@ -1,6 +1,6 @@
-//! The z-buffer (depth-buffer) method, seed 000 §2.2.1 and seed 002.
+//! The z-buffer (depth-buffer) method (Catmull 1974; Foley, van Dam, Feiner & Hughes §15.4).
 //!
-//! The seeds' algorithm: two buffers the size of the frame, `depth[x][y]` set to the maximum
+//! The algorithm: two buffers the size of the frame, `depth[x][y]` set to the maximum
 //! and `intensity[x][y]` to the background; scan-convert each polygon in any order and, at
 //! each pixel it covers, compute its depth z and keep the pixel where `z < depth[x][y]`.
 //! Depth moves incrementally: `z − A/C` one pixel right, `z + (A/m + B)/C` one row down.
@@ -10,7 +10,7 @@
 //! ([`crate::polygons::walk_edges`]); depth starts each span from the polygon's plane and
 //! steps by `dzdx`, the same bits as the scan-line method in Q16.16. The test is a strict
 //! `<`, and polygons arrive in scene order, so a tie goes to the polygon first in the scene
-//! (seed 000 Example 3, GUIDE §1).
+//! (README, Conventions).
 //!
 //! Rows leave top to bottom, but only once the whole frame is drawn: the method needs the
 //! whole frame in RAM, `W·H·(size_of::<N>() + 2)` bytes ([`ZBuffer::RAM_BYTES`]) — 345,600
