@@ -535,7 +535,7 @@ mod tests {
         assert_eq!(
             e.to_string(),
             format!(
-                "many.off: active list holds {HOST_ACTIVE} but this scene needs {n}: raise that capacity"
+                "many.off: active list holds {HOST_ACTIVE} but this scene needs {n}: raise that capacity (the renderer's const parameter A to at least {n})"
             )
         );
     }

@@ -351,7 +351,7 @@ fn a_model_beyond_the_host_capacities_names_the_capacity_and_its_need() {
     assert_eq!(
         e.to_string(),
         format!(
-            "{}: active list holds {HOST_ACTIVE} but this scene needs {n}: raise that capacity",
+            "{}: active list holds {HOST_ACTIVE} but this scene needs {n}: raise that capacity (the renderer's const parameter A to at least {n})",
             path.display()
         )
     );

@@ -10,8 +10,8 @@ pub enum Table {
     Polygons,
     /// The edge table (edges that cross a sample row on screen).
     Edges,
-    /// The vertex pool (the scan-line method: the vertices of every polygon drawn, after
-    /// clipping).
+    /// The vertex buffer (the scan-line method: every vertex of the scene's meshes once, plus
+    /// what clipping makes; see [`crate::Requirements::vertices`]).
     Vertices,
     /// The active list (polygons spanning one row; twice as many active edges).
     ActivePolygons,
@@ -94,12 +94,32 @@ pub enum Error {
     },
 }
 
+impl Table {
+    /// The const parameter of the renderer type that sets this capacity, as the methods name
+    /// it (`Scanline<N, W, V, P, A>`, `ZBuffer<N, W, H>`, the polygon table's `P` and `E`, the
+    /// pieces' `Q`, the BSP stack's `D`, Warnock's list `L`, the A-buffer's fragments `F`).
+    pub fn parameter(&self) -> &'static str {
+        match self {
+            Table::Polygons => "P",
+            Table::Edges => "E",
+            Table::Vertices => "V",
+            Table::ActivePolygons => "A",
+            Table::RowWidth => "W",
+            Table::FrameBuffer => "W and H",
+            Table::Pieces => "Q",
+            Table::BspDepth => "D",
+            Table::VisibleList => "L",
+            Table::Fragments => "F",
+        }
+    }
+}
+
 impl core::fmt::Display for Table {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.write_str(match self {
             Table::Polygons => "polygon table",
             Table::Edges => "edge table",
-            Table::Vertices => "vertex pool",
+            Table::Vertices => "vertex buffer",
             Table::ActivePolygons => "active list",
             Table::RowWidth => "row buffer",
             Table::FrameBuffer => "frame buffer",
@@ -120,7 +140,9 @@ impl core::fmt::Display for Error {
                 capacity,
             } => write!(
                 f,
-                "{table} holds {capacity} but this scene needs {needed}: raise that capacity"
+                "{table} holds {capacity} but this scene needs {needed}: raise that capacity \
+                 (the renderer's const parameter {} to at least {needed})",
+                table.parameter()
             ),
             Error::IndexOutOfRange { face, index } => {
                 write!(f, "face {face}: vertex index {index} out of range")
