@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# The README's measured figures against the commands that measure them: fails, naming the
+# figure and both values, when a quoted figure no longer matches its measurement (figures are
+# generated, not typed). CI runs it after the firmware size check and the emulated bench
+# (it reads emu/target/bench-m4.txt, which `bash emu/run.sh m4` writes).
+#
+# Checked: the firmware's flash and static RAM ("On the board"), the converted torus's
+# scan-line RAM ("Bring your own model"), the emulated cube counts of cull-only and the
+# scan-line method ("Methods"), and the scan-line RAM column of the methods table against
+# docs/methods/foley.md (which its own command writes).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+readme=README.md
+fail=0
+
+# thousands 132384 -> 132,384
+thousands() { echo "$1" | sed ':a;s/\B[0-9]\{3\}\>/,&/;ta'; }
+
+expect() { # what, text that must be in the README
+  if grep -qF -- "$2" "$readme"; then
+    echo "check-figures: $1: \"$2\" matches"
+  else
+    echo "check-figures: $1: the README should say \"$2\" (measured now); update it" >&2
+    fail=1
+  fi
+}
+
+# Firmware flash and static RAM.
+out="$(bash scripts/firmware-size.sh 2>&1 | grep '^firmware: flash')"
+flash="$(echo "$out" | sed -E 's/^firmware: flash ([0-9]+) bytes.*/\1/')"
+ram="$(echo "$out" | sed -E 's/.*static RAM ([0-9]+) bytes.*/\1/')"
+expect "firmware flash" "at this commit $(thousands "$flash") bytes"
+expect "firmware static RAM" "and $(thousands "$ram") of static RAM"
+
+# The converted torus's scan-line RAM (the README's convert command).
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+torus="$(cargo run --release -q -p zrow-sim -- convert --model assets/models/torus.off \
+  --out "$tmp/torus.rs" --size 240x240 --distance 3 2>&1 | sed -nE 's/.*RAM: scan-line ([0-9]+) bytes.*/\1/p')"
+expect "converted torus RAM" "torus at 240×240: $(thousands "$torus") bytes"
+
+# The emulated cube: cull-only against the scan-line method (Q16.16, M instructions).
+bench=emu/target/bench-m4.txt
+count() { awk -v m="$1" '$1 == "method=" m && $2 == "scene=cube" && $3 == "format=q16.16" {
+  split($5, f, "="); printf "%.2f", f[2] / 1e6 }' "$bench"; }
+expect "emulated cube, cull-only" "counts $(count cull-only) M for the cube"
+expect "emulated cube, scan-line" "the scan-line method's $(count scanline) M"
+
+# The methods table's scan-line RAM, as docs/methods/foley.md has it.
+ram_cols="$(awk -F'|' '$2 ~ /^ scanline $/ && $5 ~ /KiB/ { gsub(/ |KiB/, "", $5); gsub(/ |KiB/, "", $8); print $5 " / " $8 " KiB"; exit }' docs/methods/foley.md)"
+expect "methods table, scan-line RAM @100 / @2,500" "| $ram_cols |"
+
+exit "$fail"
