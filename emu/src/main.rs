@@ -125,8 +125,7 @@ fn frame<N: Format, R: Renderer<N>>(
     cfg: &Config,
     tris: usize,
 ) -> Result<Line, &'static str> {
-    let mut rows = [0u32; 241];
-    let req = zrow::requirements(scene, cfg, &mut rows).map_err(|_| "requirements failed")?;
+    let req = zrow::requirements(scene, cfg).map_err(|_| "requirements failed")?;
     let mut sink = FrameHash::default();
     let renderer = black_box(renderer);
     zrow_bench_start();

@@ -1124,7 +1124,6 @@ pub fn measure_view<N: Scalar>(
     mesh: &Mesh<'_, N>,
     rot: &[[f64; 3]; 3],
     opts: &ConvertOptions,
-    rows: &mut Vec<u32>,
 ) -> Result<Requirements, zrow::Error> {
     let r = rot.map(|row| row.map(|c| c as f32));
     let transform = Affine::from_f32([
@@ -1147,8 +1146,7 @@ pub fn measure_view<N: Scalar>(
         light: light(),
     };
     let cfg = Config::model(opts.width, opts.height);
-    rows.resize(opts.height as usize + 1, 0);
-    zrow::requirements(&scene, &cfg, rows)
+    zrow::requirements(&scene, &cfg)
 }
 
 /// Measures every sampled and random view; returns the statistics and the measured eye
@@ -1196,7 +1194,6 @@ fn measure_all<N: Scalar>(
             },
         }
     };
-    let mut rows = Vec::new();
     let mut depth = (f64::INFINITY, f64::NEG_INFINITY);
     let d = f64::from(opts.distance);
     let mut measure = |rot: &Rot| -> Result<Requirements, SimError> {
@@ -1204,7 +1201,7 @@ fn measure_all<N: Scalar>(
             let w = d - dot(rot[2], *v);
             depth = (depth.0.min(w), depth.1.max(w));
         }
-        measure_view(&mesh, rot, opts, &mut rows).map_err(blame)
+        measure_view(&mesh, rot, opts).map_err(blame)
     };
     let mut stats = ViewStats::default();
     let mut seen: Vec<(Requirements, Rot)> = Vec::new();
@@ -1302,8 +1299,7 @@ fn render_in<N: Scalar + Send + Sync>(
                 camera,
                 light: light(),
             };
-            let mut rows = vec![0; height as usize + 1];
-            let req = zrow::requirements(&scene, &cfg, &mut rows).map_err(scene_error)?;
+            let req = zrow::requirements(&scene, &cfg).map_err(scene_error)?;
             crate::render::check_capacity(&req).map_err(scene_error)?;
             crate::render::draw(
                 crate::render::Algo::Scanline,

@@ -584,14 +584,13 @@ mod tests {
 
     #[test]
     fn the_capacities_fit_every_demo_view() {
-        let mut rows = vec![0u32; SIZE as usize + 1];
         for &name in &zrow_scenes::DEMOS {
             for step in 0..64 {
                 let angle = step as f32 * std::f32::consts::TAU / 64.0;
                 for cull in [Cull::Back, Cull::None] {
                     let req = zrow_scenes::with_scene::<Q16_16, _>(name, angle, |s, cfg, _| {
                         let cfg = zrow::Config { cull, ..*cfg };
-                        zrow::requirements(s, &cfg, &mut rows).unwrap()
+                        zrow::requirements(s, &cfg).unwrap()
                     })
                     .unwrap();
                     assert!(req.polygons as usize <= DEMO_POLYGONS, "{name} {req:?}");

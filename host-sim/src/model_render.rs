@@ -157,8 +157,7 @@ fn measure<N: Scalar>(
     scene: &dyn Scene<N>,
     cfg: &Config,
 ) -> Result<Requirements, SimError> {
-    let mut rows = vec![0u32; cfg.height as usize + 1];
-    zrow::requirements(scene, cfg, &mut rows).map_err(|e| blame(model, e))
+    zrow::requirements(scene, cfg).map_err(|e| blame(model, e))
 }
 
 /// Builds the scene (the model at the origin, the orbit camera, the fixed light) and calls `f`

@@ -231,8 +231,7 @@ pub fn measure<N: Scalar>(
     let faces = faces(scene);
     let screen = screen_scene(&vertices, &faces);
     let cfg = Config::screen(width, height);
-    let mut rows = vec![0u32; height as usize + 1];
-    zrow::requirements(&screen, &cfg, &mut rows).map_err(|e| core_error(scene, e))
+    zrow::requirements(&screen, &cfg).map_err(|e| core_error(scene, e))
 }
 
 fn faces(scene: &OffScene) -> Vec<Face<'_>> {

@@ -40,8 +40,7 @@ impl SceneInfo {
     pub fn measure(s: &Surfaces) -> Self {
         bench::with_screen(s, |scene| {
             let cfg = bench::config();
-            let mut rows = vec![0u32; SIZE + 1];
-            let req = zrow::requirements(scene, &cfg, &mut rows).expect("the scene is valid");
+            let req = zrow::requirements(scene, &cfg).expect("the scene is valid");
             let mut count = vec![0u32; SIZE * SIZE];
             let bits = cfg.subpixel_bits as u32;
             scene

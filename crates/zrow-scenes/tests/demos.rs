@@ -10,8 +10,7 @@ fn demos_fit_the_board_renderer_over_a_full_turn() {
         for k in 0..64 {
             let angle = k as f32 * core::f32::consts::TAU / 64.0;
             let req = zrow_scenes::with_scene::<Q16_16, _>(name, angle, |scene, cfg, _| {
-                let mut rows = vec![0u32; cfg.height as usize + 1];
-                requirements(scene, cfg, &mut rows).unwrap()
+                requirements(scene, cfg).unwrap()
             })
             .unwrap();
             worst = worst.max(req);

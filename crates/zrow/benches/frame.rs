@@ -88,8 +88,7 @@ fn measure<N: Scalar>(
     scene: &dyn Scene<N>,
     cfg: &Config,
 ) {
-    let mut scratch = vec![0u32; cfg.height as usize + 1];
-    let req = requirements(scene, cfg, &mut scratch).expect("requirements");
+    let req = requirements(scene, cfg).expect("requirements");
     assert!(
         req.polygons as usize <= P
             && req.vertices as usize <= V

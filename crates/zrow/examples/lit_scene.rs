@@ -107,10 +107,9 @@ fn draw<N: Scalar>() -> Vec<Frame> {
 
     // What the scene needs over the frames drawn, against the renderer's capacities.
     let mut need = Requirements::default();
-    let mut rows = vec![0u32; SIZE as usize + 1];
     for k in 0..FRAMES {
         scene_at(k, &mut |s| {
-            need = need.max(requirements(s, &cfg, &mut rows).unwrap());
+            need = need.max(requirements(s, &cfg).unwrap());
         });
     }
     assert!(

@@ -43,8 +43,14 @@ impl Requirements {
     }
 }
 
-/// Measures what `scene` needs under `cfg`. `rows` is scratch, at least `cfg.height + 1` long
-/// (one counter per row); shorter scratch is [`Error::BadConfig`].
+/// Rows counted per pass of [`requirements`] (its counters live on the stack: 1 KiB).
+const ROWS_PER_PASS: usize = 256;
+
+/// Measures what `scene` needs under `cfg`, without allocating or asking for scratch: the
+/// scene's geometry runs once for frames up to 256 rows tall, once more per further 256 rows.
+///
+/// For an animation, take the [`Requirements::max`] of the views it will show (a converter
+/// samples orientations the same way), then size the renderer from it.
 ///
 /// ```
 /// use zrow::{requirements, Config, Face, Mesh, ScreenScene, Vec3};
@@ -52,40 +58,109 @@ impl Requirements {
 /// let v = [Vec3::new(1.0f32, 1.0, 1.0), Vec3::new(9.0, 1.0, 1.0), Vec3::new(1.0, 9.0, 1.0)];
 /// let faces = [Face { indices: &[0u16, 1, 2], color: Rgb565::RED, alpha: 255 }];
 /// let scene = ScreenScene { mesh: Mesh::new(&v, &faces) };
-/// let mut rows = [0u32; 17];
-/// let req = requirements(&scene, &Config::screen(16, 16), &mut rows).unwrap();
+/// let req = requirements(&scene, &Config::screen(16, 16)).unwrap();
 /// assert_eq!((req.polygons, req.edges, req.active_polygons), (1, 2, 1));
 /// ```
+// Out of line: a sizing call, not a frame's work; inlined, its row passes would weigh on the
+// inlining of whatever frame code shares its caller.
+#[inline(never)]
 pub fn requirements<N: Scalar>(
     scene: &(impl Scene<N> + ?Sized),
     cfg: &Config,
-    rows: &mut [u32],
 ) -> Result<Requirements, Error> {
     cfg.validate(usize::MAX)?;
     let h = cfg.height as usize;
-    let rows = rows.get_mut(..=h).ok_or(Error::BadConfig)?;
-    rows.fill(0);
     let mut req = Requirements {
         width: cfg.width,
         ..Requirements::default()
     };
-    let mut buf = VertexBuffer::new(&mut []);
-    scene.polygons(cfg, &mut buf, &mut |poly| {
-        if let Some(sp) = setup(&poly.to_raster(), cfg)? {
-            req.polygons += 1;
-            req.edges += sp.edges.len() as u32;
-            let (a, b) = (sp.first_row as usize, sp.last_row as usize + 1);
-            rows[a] = rows[a].wrapping_add(1);
-            rows[b] = rows[b].wrapping_sub(1);
+    // Each pass: a difference array over its rows (+1 where a polygon starts, −1 after it
+    // ends), with the polygons already open at its first row counted apart.
+    let mut rows = [0u32; ROWS_PER_PASS + 1];
+    let mut base = 0;
+    while base < h {
+        let len = (h - base).min(ROWS_PER_PASS);
+        rows.fill(0);
+        let mut open = 0u32;
+        let first_pass = base == 0;
+        let mut buf = VertexBuffer::new(&mut []);
+        scene.polygons(cfg, &mut buf, &mut |poly| {
+            if let Some(sp) = setup(&poly.to_raster(), cfg)? {
+                if first_pass {
+                    req.polygons += 1;
+                    req.edges += sp.edges.len() as u32;
+                }
+                // Rows a..b, and this pass's rows base..base + len.
+                let (a, b) = (sp.first_row as usize, sp.last_row as usize + 1);
+                if a < base + len && b > base {
+                    if a < base {
+                        open += 1;
+                    } else {
+                        rows[a - base] = rows[a - base].wrapping_add(1);
+                    }
+                    if b < base + len {
+                        rows[b - base] = rows[b - base].wrapping_sub(1);
+                    }
+                }
+            }
+            Ok(())
+        })?;
+        if first_pass {
+            // What a vertex buffer with room would have held (geometry counts it without one).
+            req.vertices = buf.needed() as u32;
         }
-        Ok(())
-    })?;
-    // What a vertex buffer with room would have held (geometry counts it without one).
-    req.vertices = buf.needed() as u32;
-    let mut running = 0u32;
-    for r in rows.iter() {
-        running = running.wrapping_add(*r);
-        req.active_polygons = req.active_polygons.max(running);
+        let mut running = open;
+        for r in &rows[..len] {
+            running = running.wrapping_add(*r);
+            req.active_polygons = req.active_polygons.max(running);
+        }
+        base += len;
     }
     Ok(req)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Face, Mesh, ScreenScene, Vec3};
+    use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+
+    /// Tall frames are counted a pass of rows at a time: a polygon open across a pass boundary
+    /// still counts in the next pass, and one that starts in a later pass is found there.
+    #[test]
+    fn passes_of_rows_count_what_one_pass_would() {
+        // Thin triangles side by side over a 1,200-row frame: rows 10..700; 240..=255, which
+        // ends just before the second pass; 300..400 and 350..360, where three are open (the
+        // first is open across the boundary); and 1150..1190.
+        let tri = |x: f32, y0: f32, y1: f32| {
+            [
+                Vec3::new(x, y0, 1.0),
+                Vec3::new(x + 4.0, y0, 1.0),
+                Vec3::new(x, y1, 1.0),
+            ]
+        };
+        let mut v = [Vec3::new(0.0f32, 0.0, 0.0); 15];
+        for (k, t) in [
+            tri(1.0, 10.0, 700.0),
+            tri(8.0, 240.0, 256.0),
+            tri(16.0, 300.0, 400.0),
+            tri(22.0, 350.0, 360.0),
+            tri(28.0, 1150.0, 1190.0),
+        ]
+        .iter()
+        .enumerate()
+        {
+            v[3 * k..3 * k + 3].copy_from_slice(t);
+        }
+        let idx: [[u16; 3]; 5] = [[0, 1, 2], [3, 4, 5], [6, 7, 8], [9, 10, 11], [12, 13, 14]];
+        let faces = idx.each_ref().map(|i| Face::new(i, Rgb565::RED));
+        let scene = ScreenScene {
+            mesh: Mesh::new(&v, &faces),
+        };
+        let req = requirements(&scene, &Config::screen(32, 1200)).unwrap();
+        assert_eq!((req.polygons, req.edges, req.active_polygons), (5, 10, 3));
+        // Only the first two touch a 250-row frame, and they overlap.
+        let req = requirements(&scene, &Config::screen(32, 250)).unwrap();
+        assert_eq!((req.polygons, req.active_polygons), (2, 2));
+    }
 }

@@ -393,8 +393,7 @@ fn wrong_normals_length_is_a_typed_error_before_any_row() {
             Err(RenderError::Scene(expected))
         );
         assert_eq!(cap.rows_received, 0, "no row before the error");
-        let mut rows = [0u32; 49];
-        assert_eq!(requirements(&scene, &cfg, &mut rows), Err(expected));
+        assert_eq!(requirements(&scene, &cfg), Err(expected));
         // Screen mode ignores normals but rejects a wrong count all the same.
         let mut cap = Capture::new(64, 48);
         let e = r.render(&ScreenScene { mesh: bad }, &cfg, &mut cap);
