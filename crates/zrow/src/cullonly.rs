@@ -16,8 +16,9 @@
 //! error, but not exact either; choose it only where the structure allows
 //! (`zrow-sim`'s `auto` does).
 //!
-//! The rows still carry depth, as [`Row`] promises: each painted pixel's depth is its
-//! polygon's plane stepped along the span (one addition a pixel), never compared.
+//! The rows carry depth when the sink reads it ([`RowSink::WANTS_DEPTH`]): each painted pixel's
+//! depth is its polygon's plane stepped along the span (one addition a pixel), never compared.
+//! A sink that shows colours only gets an empty depth row, and no depth is computed.
 //!
 //! RAM ([`CullOnly::RAM_BYTES`](crate::cullonly::CullOnly::RAM_BYTES)): the polygon table (`P` polygons, `E` edges) and one row of
 //! colour and depth. Rows leave top to bottom; every capacity error comes before the first.

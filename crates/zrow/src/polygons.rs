@@ -20,7 +20,7 @@
 
 use crate::error::{Error, Table};
 use crate::number::{DepthPlane, Scalar};
-use crate::raster::{setup, signed_area2, Config, Cull, Edge, Side};
+use crate::raster::{fill_run, setup, signed_area2, Config, Cull, Edge, Side};
 use crate::scene::{Scene, VertexBuffer};
 use crate::sink::{Row, RowSink};
 use embedded_graphics_core::pixelcolor::Rgb565;
@@ -327,8 +327,9 @@ pub fn paint_span<N: Scalar>(
 }
 
 /// Paints and sends every row, top to bottom, with no depth test: in each row the polygons of
-/// `order` that cross it, in that order, each over the ones before (the depth row still gets
-/// each painted pixel's depth). For the methods whose order alone is exact
+/// `order` that cross it, in that order, each over the ones before (the depth row gets each
+/// painted pixel's depth when the sink or the cue reads it; else it is left out, as
+/// [`RowSink::WANTS_DEPTH`] allows). For the methods whose order alone is exact
 /// ([`crate::cullonly`], [`crate::ordered`]).
 pub fn paint_in_order<N: Scalar, const P: usize, const E: usize, K: RowSink<N>>(
     t: &PolygonTable<N, P, E>,
@@ -341,21 +342,37 @@ pub fn paint_in_order<N: Scalar, const P: usize, const E: usize, K: RowSink<N>>(
 ) -> Result<(), K::Error> {
     let w = (cfg.width as usize).min(depth.len()).min(intensity.len());
     let (depth, intensity) = (&mut depth[..w], &mut intensity[..w]);
+    // Depth only where someone reads it: the sink, or the perspective-correct cue.
+    let want_depth = K::WANTS_DEPTH
+        || cue
+            .is_some_and(|c| c.interpolation == crate::shading::Interpolation::PerspectiveCorrect);
     for y in 0..cfg.height as i32 {
-        depth.fill(N::MAX);
-        intensity.fill(cfg.background);
+        if want_depth {
+            depth.fill(N::MAX);
+        }
+        fill_run(intensity, cfg.background);
         for i in order.clone() {
             let Some(p) = t.polys.get(i) else { continue };
             if (p.first_row as i32..=p.last_row as i32).contains(&y) {
                 let (xl, xr) = t.span(i, y);
-                paint_span(depth, intensity, &p.plane, p.color, y, xl, xr);
+                if want_depth {
+                    paint_span(depth, intensity, &p.plane, p.color, y, xl, xr);
+                } else {
+                    let (x0, x1) = (
+                        xl.clamp(0, w as i32) as usize,
+                        xr.clamp(0, w as i32) as usize,
+                    );
+                    if x0 < x1 {
+                        fill_run(&mut intensity[x0..x1], p.color);
+                    }
+                }
             }
         }
         crate::shading::Cue::shade_row_if_perspective(cue, depth, intensity);
         sink.write_row(&Row {
             y: y as u16,
             intensity,
-            depth,
+            depth: if want_depth { depth } else { &[] },
         })?;
     }
     Ok(())

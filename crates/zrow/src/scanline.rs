@@ -44,8 +44,8 @@ use crate::geometry::shade;
 use crate::method::{FrameStats, Renderer};
 use crate::number::{DepthPlane, Scalar};
 use crate::raster::{
-    canonical, outline_triangle, outline_with_area, row_at_or_below, Config, Dda, RasterVertex,
-    MAX_POLYGON_VERTICES,
+    canonical, fill_run, outline_triangle, outline_with_area, row_at_or_below, Config, Dda,
+    RasterVertex, MAX_POLYGON_VERTICES,
 };
 use crate::requirements::Requirements;
 use crate::scene::{Scene, VertexBuffer, INDEXED_CORNERS};
@@ -1327,19 +1327,6 @@ fn heapsort_by_key<K: Ord>(v: &mut [u16], key: impl Fn(u16) -> K) {
     for end in (1..n).rev() {
         v.swap(0, end);
         sift(v, 0, end);
-    }
-}
-
-/// Fills a run of pixels with one colour, eight at a time (unrolled halfword stores: about
-/// one instruction a pixel, against three for a plain loop).
-#[inline]
-fn fill_run(run: &mut [Rgb565], c: Rgb565) {
-    let mut chunks = run.chunks_exact_mut(8);
-    for ch in &mut chunks {
-        ch.copy_from_slice(&[c; 8]);
-    }
-    for p in chunks.into_remainder() {
-        *p = c;
     }
 }
 
