@@ -979,7 +979,10 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             if first >= end {
                 continue; // no whole block
             }
-            planes.ensure(a);
+            if !a.planed {
+                // Checked here: the heavy rows meet each polygon once a row, its plane once.
+                planes.ensure(a);
+            }
             let dzdx = a.plane.dzdx;
             let rising = dzdx >= N::ZERO;
             for (b, bound) in hiz.iter_mut().enumerate().take(end).skip(first) {
@@ -1000,7 +1003,9 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             if x0 >= x1 {
                 continue;
             }
-            planes.ensure(a);
+            if !a.planed {
+                planes.ensure(a);
+            }
             let dzdx = a.plane.dzdx;
             let (x0, x1) = (x0 as usize, x1 as usize);
             // Depth is linear along the row: its least over a stretch is at the stretch's
