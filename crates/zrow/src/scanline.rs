@@ -1267,20 +1267,24 @@ fn test_pixels<N: Scalar>(a: &Active<N>, x0: usize, depth: &mut [N], owner: &mut
     let of = |v: u16| Rgb565::from(RawU16::new(v));
     let (poly, dzdx) = (a.poly, a.plane.dzdx);
     let mut wrote = false;
-    let pixels = depth.iter_mut().zip(owner);
+    // One length for both rows, so the indexing below needs no checks.
+    let n = depth.len().min(owner.len());
+    let (depth, owner) = (&mut depth[..n], &mut owner[..n]);
     if N::EXACT_STEPS {
         let mut z = depth_at(a, x0 as i32);
-        for (d, o) in pixels {
-            if z < *d || (z == *d && poly < raw(*o)) {
-                (*d, *o, wrote) = (z, of(poly), true);
+        for i in 0..n {
+            let d = depth[i];
+            if z < d || (z == d && poly < raw(owner[i])) {
+                (depth[i], owner[i], wrote) = (z, of(poly), true);
             }
             z = z.step(dzdx, 1);
         }
     } else {
-        for (x, (d, o)) in (x0 as i32..).zip(pixels) {
-            let z = depth_at(a, x);
-            if z < *d || (z == *d && poly < raw(*o)) {
-                (*d, *o, wrote) = (z, of(poly), true);
+        for i in 0..n {
+            let z = depth_at(a, (x0 + i) as i32);
+            let d = depth[i];
+            if z < d || (z == d && poly < raw(owner[i])) {
+                (depth[i], owner[i], wrote) = (z, of(poly), true);
             }
         }
     }
