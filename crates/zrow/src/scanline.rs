@@ -1029,8 +1029,15 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 }
                 continue;
             }
-            let blocks = &hiz[x0 >> shift..=(x1 - 1) >> shift];
-            if near_of(z_start, (x1 - x0) as i32) > blocks[1..].iter().fold(blocks[0], max) {
+            // The span's blocks' largest bound (a plain loop: the fold's iterator cost more).
+            let (bl, br) = (x0 >> shift, (x1 - 1) >> shift);
+            let mut far = hiz[bl];
+            for &h in &hiz[bl + 1..=br] {
+                if h > far {
+                    far = h;
+                }
+            }
+            if near_of(z_start, (x1 - x0) as i32) > far {
                 continue; // hidden all along
             }
             let (mut b0, mut z0) = (x0, z_start);
