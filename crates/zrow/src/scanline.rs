@@ -985,15 +985,15 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             }
             let dzdx = a.plane.dzdx;
             let rising = dzdx >= N::ZERO;
-            for (b, bound) in hiz.iter_mut().enumerate().take(end).skip(first) {
+            for b in first..end.min(hiz.len()) {
                 let far_x = if rising {
                     ((b + 1) << shift) - 1
                 } else {
                     b << shift
                 };
                 let far = depth_at(a, far_x as i32);
-                if far < *bound {
-                    *bound = far;
+                if far < hiz[b] {
+                    hiz[b] = far;
                 }
             }
         }
