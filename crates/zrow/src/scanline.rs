@@ -1053,13 +1053,23 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 } else {
                     depth_at(a, b1 as i32 - 1)
                 };
-                if near <= hiz[b] && test_pixels(a, b0, &mut depth[b0..b1], &mut owner[b0..b1]) {
-                    // The block's farthest depth now (pixels outside the span keep theirs),
-                    // if below its bound.
-                    let block = &depth[b << shift..((b + 1) << shift).min(w)];
-                    let now = block[1..].iter().fold(block[0], max);
-                    if now < hiz[b] {
-                        hiz[b] = now;
+                if near <= hiz[b] {
+                    let whole = b0 == b << shift && b1 == ((b + 1) << shift).min(w);
+                    if let Some(far) =
+                        test_pixels_far(a, b0, &mut depth[b0..b1], &mut owner[b0..b1], whole)
+                    {
+                        // The block's farthest depth now, if below its bound: from the pass
+                        // itself when the span covers the block, else over the whole block
+                        // (pixels outside the span keep theirs).
+                        let now = if whole {
+                            far
+                        } else {
+                            let block = &depth[b << shift..((b + 1) << shift).min(w)];
+                            block[1..].iter().fold(block[0], max)
+                        };
+                        if now < hiz[b] {
+                            hiz[b] = now;
+                        }
                     }
                 }
                 z0 = z0.step(dzdx, len);
@@ -1296,6 +1306,46 @@ fn test_pixels<N: Scalar>(a: &Active<N>, x0: usize, depth: &mut [N], owner: &mut
         }
     }
     wrote
+}
+
+/// [`test_pixels`] over a block: `None` if the span took no pixel, else, when `far` is
+/// asked for, the farthest depth the pixels hold afterwards (found in the same pass).
+#[inline]
+fn test_pixels_far<N: Scalar>(
+    a: &Active<N>,
+    x0: usize,
+    depth: &mut [N],
+    owner: &mut [Rgb565],
+    far: bool,
+) -> Option<N> {
+    if !far {
+        return test_pixels(a, x0, depth, owner).then_some(N::ZERO);
+    }
+    let raw = |c: Rgb565| RawU16::from(c).into_inner();
+    let of = |v: u16| Rgb565::from(RawU16::new(v));
+    let (poly, dzdx) = (a.poly, a.plane.dzdx);
+    let n = depth.len().min(owner.len());
+    let (depth, owner) = (&mut depth[..n], &mut owner[..n]);
+    let mut wrote = false;
+    let mut most = N::ZERO;
+    let mut z = depth_at(a, x0 as i32);
+    for i in 0..n {
+        if !N::EXACT_STEPS {
+            z = depth_at(a, (x0 + i) as i32);
+        }
+        let mut d = depth[i];
+        if z < d || (z == d && poly < raw(owner[i])) {
+            (depth[i], owner[i], wrote) = (z, of(poly), true);
+            d = z;
+        }
+        if i == 0 || d > most {
+            most = d;
+        }
+        if N::EXACT_STEPS {
+            z = z.step(dzdx, 1);
+        }
+    }
+    wrote.then_some(most)
 }
 
 /// A sort key: the left end (biased to unsigned; spans lie within the guard band, far inside
