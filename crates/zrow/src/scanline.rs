@@ -1076,13 +1076,18 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 b0 = b1;
             }
         }
+        // Owners to colours; neighbours mostly share an owner, so the last lookup is kept.
+        let (mut last, mut color) = (NOBODY, background);
         for c in owner.iter_mut() {
             let o = raw(*c);
-            *c = if o == NOBODY {
-                background
-            } else {
-                self.polygons[o as usize].color
-            };
+            if o != last {
+                last = o;
+                color = match self.polygons.get(o as usize) {
+                    Some(p) => p.color,
+                    None => background, // NOBODY
+                };
+            }
+            *c = color;
         }
     }
 
