@@ -1029,18 +1029,24 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 }
                 continue;
             }
-            // The span's blocks' largest bound (a plain loop: the fold's iterator cost more).
+            // Hidden all along if its nearest depth is beyond every block's bound (stopping at
+            // the first block it may win in: a plain loop, the iterators cost more).
+            let near = near_of(z_start, (x1 - x0) as i32);
             let (bl, br) = (x0 >> shift, (x1 - 1) >> shift);
-            let mut far = hiz[bl];
-            for &h in &hiz[bl + 1..=br] {
-                if h > far {
-                    far = h;
-                }
+            let mut b = bl;
+            while b <= br && near > hiz[b] {
+                b += 1;
             }
-            if near_of(z_start, (x1 - x0) as i32) > far {
+            if b > br {
                 continue; // hidden all along
             }
-            let (mut b0, mut z0) = (x0, z_start);
+            // The blocks before `b` are passed over: hidden there too.
+            let (mut b0, mut z0) = if b > bl {
+                let start = b << shift;
+                (start, z_start.step(dzdx, (start - x0) as i32))
+            } else {
+                (x0, z_start)
+            };
             while b0 < x1 {
                 let b = b0 >> shift;
                 let b1 = ((b + 1) << shift).min(x1);
