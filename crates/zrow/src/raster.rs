@@ -631,17 +631,21 @@ mod tests {
         }
     }
 
-    #[test]
-    fn dda_fast_path_equals_the_wide_one() {
-        // Edges of every slope and position, first rows just below their tops (the fast
-        // path) and far below (the wide one), every sub-pixel precision.
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = |m: i64| {
+    /// A fixed xorshift sequence: each call draws a value in `−m..=m`.
+    fn uniform(mut seed: u64) -> impl FnMut(i64) -> i64 {
+        move |m: i64| {
             seed ^= seed << 13;
             seed ^= seed >> 7;
             seed ^= seed << 17;
             (seed % (2 * m as u64 + 1)) as i64 - m
-        };
+        }
+    }
+
+    #[test]
+    fn dda_fast_path_equals_the_wide_one() {
+        // Edges of every slope and position, first rows just below their tops (the fast
+        // path) and far below (the wide one), every sub-pixel precision.
+        let mut next = uniform(0x2545_f491_4f6c_dd1d);
         let mut fast = 0;
         for _ in 0..20_000 {
             let s = 1 + (next(3) + 3) as u32 % 8;
@@ -669,13 +673,7 @@ mod tests {
         // Triangles of every size and place (on and off screen, degenerate ones too), both
         // windings, with and without culling: the same outline as the general path, and the
         // top-left corner is the least (y, x).
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = |m: i64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed % (2 * m as u64 + 1)) as i64 - m
-        };
+        let mut next = uniform(0x9e37_79b9_7f4a_7c15);
         let (mut drawn, mut ties) = (0, 0);
         for k in 0..20_000 {
             let s = 1 + (k % 8) as u32;
