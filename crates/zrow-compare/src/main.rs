@@ -1,7 +1,6 @@
 //! # zrow-compare — Foley & van Dam's Table 15.3 for zrow's methods
 //!
-//! Foley & van Dam's Table 15.3 (after Sutherland, Sproull & Schumacker 1974; seed 001 quotes
-//! it) gives the relative time of hidden-surface methods on the same scene at 100, 2,500 and
+//! Foley & van Dam's Table 15.3 (after Sutherland, Sproull & Schumacker 1974) gives the relative time of hidden-surface methods on the same scene at 100, 2,500 and
 //! 60,000 polygons: depth sort 1 / 10 / 507, z-buffer 54 / 54 / 54, Warnock 11 / 64 / 307.
 //! This program measures zrow's methods the same way and writes the comparison:
 //!

@@ -7,7 +7,7 @@ use embedded_graphics_core::pixelcolor::Rgb565;
 use std::fmt::Write as _;
 use zrow::{Requirements, Scene};
 
-/// Foley & van Dam's Table 15.3 as seed 001 quotes it: (their name, zrow's method, relative
+/// Foley & van Dam's Table 15.3: (their name, zrow's method, relative
 /// time at 100, 2,500 and 60,000 polygons).
 pub const FOLEY: [(&str, &str, [f64; 3]); 3] = [
     ("depth sort", "depth-sort", [1.0, 10.0, 507.0]),
@@ -682,8 +682,8 @@ impl Report {
         let g = |m: &str| self.growth(m, last).map_or("—".into(), rel);
         writeln!(
             d,
-            "Foley's figures are estimates (seed 001: \"Z-Buffer - Abschätzung ist konstant\", the \
-             z-buffer *estimate* is constant), made in 1974 from operation counts for the \
+            "Foley's figures are estimates (the z-buffer's row is constant because it is an \
+             estimate), made in 1974 from operation counts for the \
              machines of the day. Ours are times of exact implementations on one modern core, \
              so compare the *shapes* — how each method's time grows with the polygon count — \
              more than the levels.\n"
