@@ -1025,7 +1025,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 // only lower depths).
                 let bound = max(hiz[x0 >> shift], &hiz[(x1 - 1) >> shift]);
                 if near_of(z_start, (x1 - x0) as i32) <= bound {
-                    test_pixels(a, x0, &mut depth[x0..x1], &mut owner[x0..x1]);
+                    test_pixels::<N, false>(a, x0, &mut depth[x0..x1], &mut owner[x0..x1]);
                 }
                 continue;
             }
@@ -1061,9 +1061,13 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 };
                 if near <= hiz[b] {
                     let whole = b0 == b << shift && b1 == ((b + 1) << shift).min(w);
-                    if let Some(far) =
-                        test_pixels_far(a, b0, &mut depth[b0..b1], &mut owner[b0..b1], whole)
-                    {
+                    let (d, o) = (&mut depth[b0..b1], &mut owner[b0..b1]);
+                    let took = if whole {
+                        test_pixels::<N, true>(a, b0, d, o)
+                    } else {
+                        test_pixels::<N, false>(a, b0, d, o)
+                    };
+                    if let Some(far) = took {
                         // The block's farthest depth now, if below its bound: from the pass
                         // itself when the span covers the block, else over the whole block
                         // (pixels outside the span keep theirs).
@@ -1287,60 +1291,26 @@ fn span_cover(xl: i32, xr: i32, w: i32) -> i32 {
 }
 
 /// Depth-tests one polygon's span into a piece of row (`depth` and `owner` from column `x0`):
-/// where it is nearer, or as near and first in the scene, it takes the pixel. Whether it took
-/// any.
+/// where it is nearer, or as near and first in the scene, it takes the pixel. `None` if it
+/// took none; else, with `FAR`, the farthest depth the pixels hold afterwards (found in the
+/// same pass), without, any value.
 #[inline]
-fn test_pixels<N: Scalar>(a: &Active<N>, x0: usize, depth: &mut [N], owner: &mut [Rgb565]) -> bool {
-    let raw = |c: Rgb565| RawU16::from(c).into_inner();
-    let of = |v: u16| Rgb565::from(RawU16::new(v));
-    let (poly, dzdx) = (a.poly, a.plane.dzdx);
-    let mut wrote = false;
-    // One length for both rows, so the indexing below needs no checks.
-    let n = depth.len().min(owner.len());
-    let (depth, owner) = (&mut depth[..n], &mut owner[..n]);
-    if N::EXACT_STEPS {
-        let mut z = depth_at(a, x0 as i32);
-        for i in 0..n {
-            let d = depth[i];
-            if z < d || (z == d && poly < raw(owner[i])) {
-                (depth[i], owner[i], wrote) = (z, of(poly), true);
-            }
-            z = z.step(dzdx, 1);
-        }
-    } else {
-        for i in 0..n {
-            let z = depth_at(a, (x0 + i) as i32);
-            let d = depth[i];
-            if z < d || (z == d && poly < raw(owner[i])) {
-                (depth[i], owner[i], wrote) = (z, of(poly), true);
-            }
-        }
-    }
-    wrote
-}
-
-/// [`test_pixels`] over a block: `None` if the span took no pixel, else, when `far` is
-/// asked for, the farthest depth the pixels hold afterwards (found in the same pass).
-#[inline]
-fn test_pixels_far<N: Scalar>(
+fn test_pixels<N: Scalar, const FAR: bool>(
     a: &Active<N>,
     x0: usize,
     depth: &mut [N],
     owner: &mut [Rgb565],
-    far: bool,
 ) -> Option<N> {
-    if !far {
-        return test_pixels(a, x0, depth, owner).then_some(N::ZERO);
-    }
     let raw = |c: Rgb565| RawU16::from(c).into_inner();
     let of = |v: u16| Rgb565::from(RawU16::new(v));
     let (poly, dzdx) = (a.poly, a.plane.dzdx);
+    // One length for both rows, so the indexing below needs no checks.
     let n = depth.len().min(owner.len());
     let (depth, owner) = (&mut depth[..n], &mut owner[..n]);
-    let mut wrote = false;
-    let mut most = N::ZERO;
+    let (mut wrote, mut most) = (false, N::ZERO);
     let mut z = depth_at(a, x0 as i32);
     for i in 0..n {
+        // Exact formats step (the same bits); f32 evaluates each pixel.
         if !N::EXACT_STEPS {
             z = depth_at(a, (x0 + i) as i32);
         }
@@ -1349,7 +1319,7 @@ fn test_pixels_far<N: Scalar>(
             (depth[i], owner[i], wrote) = (z, of(poly), true);
             d = z;
         }
-        if i == 0 || d > most {
+        if FAR && (i == 0 || d > most) {
             most = d;
         }
         if N::EXACT_STEPS {
