@@ -186,7 +186,7 @@ impl IndexType {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct ConvertedFace {
     /// Indices into [`Converted::vertices`].
-    pub indices: Vec<u16>,
+    pub indices: Vec<u32>,
     /// Its colour.
     pub color: Rgb565,
     /// Where it came from.
@@ -459,9 +459,10 @@ impl Converted {
         to_vec3(&self.normals)
     }
     /// Calls `f` with the model as a zrow [`Mesh`] in format `N`, with its normals, as the
-    /// firmware will draw it (`None`: a value does not fit `N`). Indices are `u16` here
-    /// whatever [`Converted::index`] says: zrow draws `u8` and `u16` meshes bit for bit alike.
-    pub fn with_mesh<N: Scalar, R>(&self, f: impl FnOnce(&Mesh<'_, N>) -> R) -> Option<R> {
+    /// firmware will draw it (`None`: a value does not fit `N`). Indices are `u32` here
+    /// whatever [`Converted::index`] says: zrow draws `u8`, `u16` and `u32` meshes bit for bit
+    /// alike.
+    pub fn with_mesh<N: Scalar, R>(&self, f: impl FnOnce(&Mesh<'_, N, u32>) -> R) -> Option<R> {
         let vertices = self.vertices_in::<N>()?;
         let normals = self.normals_in::<N>()?;
         let faces = zrow_faces(&self.faces);
@@ -476,10 +477,14 @@ fn to_vec3<N: Scalar>(values: &[[f64; 3]]) -> Option<Vec<Vec3<N>>> {
         .collect()
 }
 
-fn zrow_faces(faces: &[ConvertedFace]) -> Vec<Face<'_>> {
+fn zrow_faces(faces: &[ConvertedFace]) -> Vec<Face<'_, u32>> {
     faces
         .iter()
-        .map(|f| Face::new(&f.indices, f.color))
+        .map(|f| Face {
+            indices: &f.indices,
+            color: f.color,
+            alpha: 255,
+        })
         .collect()
 }
 
@@ -689,7 +694,7 @@ pub fn convert_model(model: &LoadedModel, opts: &ConvertOptions) -> Result<Conve
                 *slot = kept.len() as u32;
                 kept.push(*i as usize);
             }
-            *i = *slot as u16; // < pos.len() <= 65,536 (the loader's limit)
+            *i = *slot;
         }
     }
     if kept.len() < pos.len() {
@@ -899,7 +904,7 @@ fn manifold(
     notes: &mut Vec<String>,
 ) -> Result<(), SimError> {
     // Per undirected edge: uses, and faces per direction.
-    let mut uses: HashMap<(u16, u16), (u32, u32)> = HashMap::new();
+    let mut uses: HashMap<(u32, u32), (u32, u32)> = HashMap::new();
     let mut over = (0usize, None::<(usize, Option<Origin>)>);
     let mut same_dir = (0usize, None::<(usize, Option<Origin>)>);
     for (no, face) in faces.iter().enumerate() {
@@ -1120,8 +1125,8 @@ pub fn with_margin(req: &Requirements) -> Requirements {
 }
 
 /// What `mesh` needs seen in orientation `rot` by the converter's camera.
-pub fn measure_view<N: Scalar>(
-    mesh: &Mesh<'_, N>,
+pub fn measure_view<N: Scalar, I: zrow::MeshIndex>(
+    mesh: &Mesh<'_, N, I>,
     rot: &[[f64; 3]; 3],
     opts: &ConvertOptions,
 ) -> Result<Requirements, zrow::Error> {

@@ -39,7 +39,8 @@ use zrow::{Face, Mesh, Scalar, Vec3};
 /// The colour of faces the file gives none for (STL, OBJ without material), 8-bit RGB.
 pub const DEFAULT_RGB: [u8; 3] = [200, 200, 200];
 
-/// Most vertices a model may have: zrow's faces index them with 16 bits.
+/// Most vertices a model may have: its faces index them with 32 bits ([`zrow::MeshIndex`] for
+/// `u32`; the converter, for the firmware, narrows them to `u8` or `u16`).
 pub const MAX_VERTICES: usize = off::MAX_VERTICES;
 
 /// Where in its file a vertex or face came from.
@@ -103,7 +104,7 @@ impl std::error::Error for ModelError {}
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct ModelFace {
     /// Vertex indices, 3..=[`MAX_FACE_VERTICES`], counter-clockwise seen from outside.
-    pub indices: Vec<u16>,
+    pub indices: Vec<u32>,
     /// Its colour.
     pub color: Rgb565,
     /// Where it came from, if known.
@@ -132,7 +133,7 @@ impl LoadedModel {
     /// position does not fit `N`, naming the vertex's line (or triangle).
     pub fn with_mesh<N: Scalar, R>(
         &self,
-        f: impl FnOnce(&Mesh<'_, N>) -> R,
+        f: impl FnOnce(&Mesh<'_, N, u32>) -> R,
     ) -> Result<R, SimError> {
         let mut vertices = Vec::with_capacity(self.positions.len());
         for (k, &p) in self.positions.iter().enumerate() {
@@ -151,7 +152,7 @@ impl LoadedModel {
             })?;
             vertices.push(v);
         }
-        let faces: Vec<Face<'_>> = self
+        let faces: Vec<Face<'_, u32>> = self
             .faces
             .iter()
             .map(|face| Face {
@@ -237,19 +238,19 @@ struct Raw {
 
 /// Checks counts, normalises.
 fn finish(file: &str, raw: Raw) -> Result<LoadedModel, ModelError> {
-    if raw.faces.is_empty() {
-        return Err(ModelError::new(file, None, "the model has no faces"));
-    }
     if raw.positions.len() > MAX_VERTICES {
         return Err(ModelError::new(
             file,
             None,
             format!(
-                "the model has {} vertices, at most {MAX_VERTICES} supported (16-bit indices): \
+                "the model has {} vertices, at most {MAX_VERTICES} supported (32-bit indices): \
                  simplify it",
                 raw.positions.len()
             ),
         ));
+    }
+    if raw.faces.is_empty() {
+        return Err(ModelError::new(file, None, "the model has no faces"));
     }
     // Bounding box in f64, so that extreme f32 values cannot overflow.
     let mut lo = [f64::INFINITY; 3];
@@ -536,7 +537,7 @@ fn parse_obj(file: &str, data: &[u8], dir: &Path) -> Result<LoadedModel, ModelEr
                 let Some(&i) = local.get(i as usize) else {
                     return Err(ModelError::new(file, origin, "vertex index out of range"));
                 };
-                indices.push(i.min(u16::MAX as usize) as u16);
+                indices.push(i.min(u32::MAX as usize) as u32);
             }
             // A polygon beyond zrow's limit becomes a fan of polygons within it.
             if indices.len() <= MAX_FACE_VERTICES {
@@ -589,7 +590,7 @@ fn parse_stl(file: &str, data: &[u8]) -> Result<LoadedModel, ModelError> {
     };
     let default = rgb8_to_rgb565(DEFAULT_RGB);
     // Share vertices that are bit-identical.
-    let mut index_of: HashMap<[u32; 3], u16> = HashMap::new();
+    let mut index_of: HashMap<[u32; 3], u32> = HashMap::new();
     let mut raw = Raw {
         positions: Vec::new(),
         origins: Vec::new(),
@@ -607,12 +608,12 @@ fn parse_stl(file: &str, data: &[u8]) -> Result<LoadedModel, ModelError> {
                             file,
                             None,
                             format!(
-                                "the model has more than {MAX_VERTICES} distinct vertices (16-bit \
+                                "the model has more than {MAX_VERTICES} distinct vertices (32-bit \
                                  indices; reached at triangle {t}): simplify it"
                             ),
                         ));
                     }
-                    let i = raw.positions.len() as u16;
+                    let i = raw.positions.len() as u32;
                     index_of.insert(key, i);
                     raw.positions.push(*v);
                     raw.origins.push(origin.vertex(k));

@@ -167,7 +167,7 @@ pub(crate) fn with_scene<N: Scalar, R>(
     view: &View,
     width: u16,
     height: u16,
-    f: impl FnOnce(&ModelScene<'_, N>, &Config) -> R,
+    f: impl FnOnce(&ModelScene<'_, N, u32>, &Config) -> R,
 ) -> Result<R, SimError> {
     view.validate()
         .map_err(|m| SimError::Usage(format!("bad view: {m}")))?;
@@ -207,7 +207,7 @@ fn model_image<N: Scalar + Send + Sync>(
 }
 
 /// The scene's structure: one object whose mesh is a closed convex solid?
-fn structure<N: Scalar>(scene: &ModelScene<'_, N>) -> Structure {
+fn structure<N: Scalar>(scene: &ModelScene<'_, N, u32>) -> Structure {
     Structure {
         closed_convex: scene
             .objects

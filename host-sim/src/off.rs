@@ -24,8 +24,9 @@ use embedded_graphics::pixelcolor::Rgb565;
 use zrow::raster::MAX_FACE_VERTICES;
 use zrow::{Scalar, Vec3};
 
-/// Most vertices a file may declare: faces index them with 16 bits ([`zrow::Face::indices`]).
-pub const MAX_VERTICES: usize = u16::MAX as usize + 1;
+/// Most vertices a file may declare: faces index them with 32 bits ([`zrow::MeshIndex`] for
+/// `u32`). Files that large are refused long before, by their size ([`crate::model::MAX_FILE_BYTES`]).
+pub const MAX_VERTICES: usize = u32::MAX as usize + 1;
 
 /// One vertex as read: its position and the line it came from.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -41,7 +42,7 @@ pub struct OffVertex {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct OffFace {
     /// Vertex indices, 3..=[`MAX_FACE_VERTICES`] of them.
-    pub indices: Vec<u16>,
+    pub indices: Vec<u32>,
     /// 8-bit RGB colour (white when the file gives none).
     pub color: [u8; 3],
     /// Opacity, the colour's optional fourth component: 0 = invisible, 255 = opaque (the
@@ -143,7 +144,7 @@ pub enum OffErrorKind {
         /// Why.
         reason: String,
     },
-    /// More vertices than 16-bit indices can reach.
+    /// More vertices than 32-bit indices can reach.
     TooManyVertices {
         /// The declared count.
         count: u64,
@@ -240,7 +241,7 @@ impl fmt::Display for OffErrorKind {
             ),
             TooManyVertices { count } => write!(
                 f,
-                "{count} vertices declared, at most {MAX_VERTICES} supported (16-bit indices)"
+                "{count} vertices declared, at most {MAX_VERTICES} supported (32-bit indices)"
             ),
             UnexpectedEof { expected } => {
                 write!(f, "unexpected end of file: expected {expected}")
@@ -481,7 +482,7 @@ fn parse_vertex(tokens: &[&str]) -> Result<[f32; 3], OffErrorKind> {
 }
 
 /// A face line: its indices, its colour and its alpha (255 when not given).
-fn parse_face(tokens: &[&str], nv: usize) -> Result<(Vec<u16>, [u8; 3], u8), OffErrorKind> {
+fn parse_face(tokens: &[&str], nv: usize) -> Result<(Vec<u32>, [u8; 3], u8), OffErrorKind> {
     let integer = |what: &'static str, t: &str| {
         t.parse::<u64>().map_err(|_| OffErrorKind::NotANumber {
             what,
@@ -509,7 +510,7 @@ fn parse_face(tokens: &[&str], nv: usize) -> Result<(Vec<u16>, [u8; 3], u8), Off
         if index >= nv as u64 {
             return Err(OffErrorKind::IndexOutOfRange { index, count: nv });
         }
-        indices.push(index as u16); // < nv <= MAX_VERTICES, so it fits
+        indices.push(index as u32); // < nv <= MAX_VERTICES, so it fits
     }
     let color = &rest[n..];
     let (rgb, alpha) = match color.len() {
@@ -612,7 +613,7 @@ mod tests {
                 "OFF\n-3 1 0\n",
                 "t.off:2: bad counts line: vertex count `-3`",
             ),
-            ("OFF\n70000 1 0\n", "t.off:2: 70000 vertices declared"),
+            ("OFF\n4294967297 1 0\n", "t.off:2: 4294967297 vertices declared"),
             (
                 "OFF\n",
                 "t.off:1: unexpected end of file: expected the counts",

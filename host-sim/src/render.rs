@@ -234,7 +234,7 @@ pub fn measure<N: Scalar>(
     zrow::requirements(&screen, &cfg).map_err(|e| core_error(scene, e))
 }
 
-fn faces(scene: &OffScene) -> Vec<Face<'_>> {
+fn faces(scene: &OffScene) -> Vec<Face<'_, u32>> {
     scene
         .faces
         .iter()
@@ -246,7 +246,10 @@ fn faces(scene: &OffScene) -> Vec<Face<'_>> {
         .collect()
 }
 
-fn screen_scene<'a, N>(vertices: &'a [zrow::Vec3<N>], faces: &'a [Face<'a>]) -> ScreenScene<'a, N> {
+fn screen_scene<'a, N>(
+    vertices: &'a [zrow::Vec3<N>],
+    faces: &'a [Face<'a, u32>],
+) -> ScreenScene<'a, N, u32> {
     ScreenScene {
         mesh: Mesh::new(vertices, faces),
     }
@@ -327,7 +330,7 @@ fn with_screen<N: Scalar + Send + Sync, T>(
     scene: &OffScene,
     width: u16,
     height: u16,
-    f: impl FnOnce(&ScreenScene<'_, N>, &Config) -> Result<T, SimError>,
+    f: impl FnOnce(&ScreenScene<'_, N, u32>, &Config) -> Result<T, SimError>,
 ) -> Result<T, SimError> {
     let req = measure::<N>(scene, width, height)?;
     check_capacity(&req).map_err(|e| core_error(scene, e))?;

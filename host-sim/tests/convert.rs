@@ -94,8 +94,8 @@ fn index_type_is_u8_up_to_256_vertices_then_u16() {
 
 #[test]
 fn more_than_65536_vertices_is_an_error_naming_the_count() {
-    // u16 indices cannot name more than 65,536 vertices, so the loaders refuse such a file
-    // before the converter sees it; the converter's own check is the boundary above.
+    // The loaders take any number of vertices (32-bit indices); the firmware's meshes index
+    // with u8 or u16, so the converter refuses more than 65,536.
     let dir = scratch("big");
     let path = dir.join("big.off");
     std::fs::write(&path, strip(65_537, 0)).unwrap();

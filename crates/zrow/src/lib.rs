@@ -124,7 +124,7 @@ pub use zbuffer::ZBuffer;
 /// `include!(concat!(env!("OUT_DIR"), "/", "name", ".rs"))`.
 ///
 /// The build script (a model converter run from `build.rs`) writes `$OUT_DIR/name.rs`: Rust
-/// items such as a vertex array, a face array with `u8` or `u16` indices ([`scene::MeshIndex`]),
+/// items such as a vertex array, a face array with `u8`, `u16` or `u32` indices ([`scene::MeshIndex`]),
 /// optionally one normal per face, and a `static` [`Mesh`] built with the `const fn`s
 /// [`Mesh::new`] or [`Mesh::with_normals`]. The generated code names everything by full path
 /// (`zrow::Mesh`, `zrow::Q16_16::from_bits`, ...), since it lands wherever the macro is

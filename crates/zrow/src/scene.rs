@@ -8,17 +8,20 @@ use crate::raster::{Config, RasterPolygon, RasterVertex};
 use embedded_graphics_core::pixelcolor::Rgb565;
 
 mod sealed {
-    /// Keeps [`super::MeshIndex`] implemented for `u8` and `u16` only.
+    /// Keeps [`super::MeshIndex`] implemented for `u8`, `u16` and `u32` only.
     pub trait Sealed {}
     impl Sealed for u8 {}
     impl Sealed for u16 {}
+    impl Sealed for u32 {}
 }
 
-/// The integer type of a mesh's vertex indices: `u16` (the default, up to 65,536 vertices) or
-/// `u8` (up to 256 vertices, half the flash per index). A model converter picks the narrowest
-/// one that fits the mesh. Sealed: only `u8` and `u16` implement it.
+/// The integer type of a mesh's vertex indices: `u16` (the default, up to 65,536 vertices),
+/// `u8` (up to 256 vertices, half the flash per index) or `u32` (any mesh: models of hundreds
+/// of thousands of vertices on a host). A model converter picks the narrowest one that fits
+/// the mesh. Sealed: only `u8`, `u16` and `u32` implement it.
 pub trait MeshIndex: Copy + core::fmt::Debug + PartialEq + 'static + sealed::Sealed {
-    /// The largest vertex count the type can address (256 for `u8`, 65,536 for `u16`).
+    /// The largest vertex count the type can address (256 for `u8`, 65,536 for `u16`,
+    /// 2³² for `u32`).
     const MAX: usize;
     /// The index as a `usize`, for looking the vertex up.
     fn index(self) -> usize;
@@ -34,6 +37,15 @@ impl MeshIndex for u8 {
 
 impl MeshIndex for u16 {
     const MAX: usize = 1 << 16;
+    #[inline]
+    fn index(self) -> usize {
+        self as usize
+    }
+}
+
+impl MeshIndex for u32 {
+    // 2³² does not fit a 32-bit `usize`: the largest count that does.
+    const MAX: usize = (u32::MAX as usize).saturating_add(1);
     #[inline]
     fn index(self) -> usize {
         self as usize
@@ -295,6 +307,15 @@ impl<'a, N: Copy> VertexBuffer<'a, N> {
     /// The vertices written so far.
     pub fn as_slice(&self) -> &[RasterVertex<N>] {
         &self.slots[..self.len]
+    }
+    /// Appends `v` as a run of consecutive slots and returns the first one's index, or `None`
+    /// without room (counted as needed either way): for a [`Scene`] of one's own that hands
+    /// over polygons already projected, which renderers that keep polygons for the frame (the
+    /// scan-line method) want [`Polygon::cached`] in this buffer.
+    pub fn push(&mut self, v: &[RasterVertex<N>]) -> Option<u32> {
+        let start = self.claim(v.len())?;
+        self.slots_from(start)[..v.len()].copy_from_slice(v);
+        u32::try_from(start).ok()
     }
     /// Claims `n` slots: their first index, or `None` without room (counted as needed
     /// either way).
