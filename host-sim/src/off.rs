@@ -613,7 +613,10 @@ mod tests {
                 "OFF\n-3 1 0\n",
                 "t.off:2: bad counts line: vertex count `-3`",
             ),
-            ("OFF\n4294967297 1 0\n", "t.off:2: 4294967297 vertices declared"),
+            (
+                "OFF\n4294967297 1 0\n",
+                "t.off:2: 4294967297 vertices declared",
+            ),
             (
                 "OFF\n",
                 "t.off:1: unexpected end of file: expected the counts",
