@@ -303,7 +303,7 @@ pub struct Report {
     /// Flash bytes of the emitted data.
     pub flash: FlashBytes,
     /// RAM of back-face culling alone (`zrow::cullonly::CullOnly`) at the capacities, when
-    /// the model is one closed convex solid (`zrow::structure::closed_convex`): then it draws
+    /// the model is one closed convex solid (`zrow_sim::structure::closed_convex`, the core's rule): then it draws
     /// the model exactly with no depth test, and `Cheapest` in the emitted file is it.
     pub cull_only_ram: Option<usize>,
 }
@@ -830,8 +830,8 @@ pub fn convert_model(model: &LoadedModel, opts: &ConvertOptions) -> Result<Conve
     };
     // Judged on the emitted values (the format's rounding), as the firmware will hold them.
     let convex = match opts.format {
-        Format::Q16_16 => converted.with_mesh::<Q16_16, _>(zrow::structure::closed_convex),
-        Format::F32 => converted.with_mesh::<f32, _>(zrow::structure::closed_convex),
+        Format::Q16_16 => converted.with_mesh::<Q16_16, _>(crate::structure::closed_convex),
+        Format::F32 => converted.with_mesh::<f32, _>(crate::structure::closed_convex),
     };
     if convex == Some(true) {
         let (p, e) = (capacities.polygons as usize, capacities.edges as usize);
@@ -1305,12 +1305,12 @@ fn render_in<N: Scalar + Send + Sync>(
                 light: light(),
             };
             let req = zrow::requirements(&scene, &cfg).map_err(scene_error)?;
-            crate::render::check_capacity(&req).map_err(scene_error)?;
             crate::render::draw(
                 crate::render::Algo::Scanline,
                 &scene,
                 &cfg,
-                crate::render::Structure::default(),
+                &req,
+                crate::render::Structure::default,
                 scene_error,
             )
         })

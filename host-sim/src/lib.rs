@@ -35,6 +35,7 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
+pub mod bands;
 pub mod cli;
 pub mod convert;
 pub mod demo;
@@ -44,6 +45,7 @@ pub mod model_render;
 pub mod off;
 pub mod png_io;
 pub mod render;
+pub mod structure;
 #[cfg(feature = "window")]
 pub mod window;
 

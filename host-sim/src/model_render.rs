@@ -15,8 +15,8 @@
 
 use crate::error::SimError;
 use crate::model::{LoadedModel, ModelError};
-use crate::render::{check_capacity, choose, draw, Algo, Format, Image, Structure};
-use zrow::structure::closed_convex;
+use crate::render::{draw, resolve, Algo, Format, Image, Structure};
+use crate::structure::closed_convex;
 use zrow::{Affine, Camera, Config, Light, ModelScene, Object, Requirements, Scalar, Vec3};
 use zrow::{Scene, Q16_16};
 
@@ -201,8 +201,14 @@ fn model_image<N: Scalar + Send + Sync>(
 ) -> Result<Image, SimError> {
     with_scene::<N, _>(model, view, width, height, |scene, cfg| {
         let req = measure(model, scene, cfg)?;
-        check_capacity(&req).map_err(|e| blame(model, e))?;
-        draw(algo, scene, cfg, structure(scene), |e| blame(model, e))
+        draw(
+            algo,
+            scene,
+            cfg,
+            &req,
+            || structure(scene),
+            |e| blame(model, e),
+        )
     })?
 }
 
@@ -233,7 +239,8 @@ pub fn choose_model(
         h: u16,
     ) -> Result<Algo, SimError> {
         with_scene::<N, _>(m, v, w, h, |scene, cfg| {
-            choose(scene, cfg, structure(scene)).map_err(|e| blame(m, e))
+            let req = measure(m, scene, cfg)?;
+            resolve(Algo::Auto, scene, cfg, &req, || structure(scene)).map_err(|e| blame(m, e))
         })?
     }
     match format {

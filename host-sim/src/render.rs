@@ -278,6 +278,8 @@ pub(crate) fn check_capacity(req: &Requirements) -> Result<(), zrow::Error> {
     for (table, needed, capacity) in [
         (Table::Polygons, req.polygons, HOST_POLYGONS),
         (Table::Edges, req.edges, HOST_EDGES),
+        // The scan-line method's vertex buffer (its `V`).
+        (Table::Vertices, req.vertices, HOST_EDGES),
         (Table::ActivePolygons, req.active_polygons, HOST_ACTIVE),
         (Table::RowWidth, req.width as u32, HOST_WIDTH),
     ] {
@@ -298,8 +300,8 @@ fn screen<N: Scalar + Send + Sync>(
     height: u16,
     algo: Algo,
 ) -> Result<Image, SimError> {
-    with_screen::<N, _>(scene, width, height, |screen, cfg| {
-        draw(algo, screen, cfg, Structure::default(), |e| {
+    with_screen::<N, _>(scene, width, height, |screen, cfg, req| {
+        draw(algo, screen, cfg, req, Structure::default, |e| {
             core_error(scene, e)
         })
     })
@@ -314,8 +316,8 @@ pub fn choose_screen(
     format: Format,
 ) -> Result<Algo, SimError> {
     fn run<N: Scalar + Send + Sync>(s: &OffScene, w: u16, h: u16) -> Result<Algo, SimError> {
-        with_screen::<N, _>(s, w, h, |screen, cfg| {
-            choose(screen, cfg, Structure::default()).map_err(|e| core_error(s, e))
+        with_screen::<N, _>(s, w, h, |screen, cfg, req| {
+            resolve(Algo::Auto, screen, cfg, req, Structure::default).map_err(|e| core_error(s, e))
         })
     }
     match format {
@@ -324,28 +326,28 @@ pub fn choose_screen(
     }
 }
 
-/// Measures and checks `scene` at this size in format `N`, then calls `f` with it as a zrow
-/// screen-space scene.
+/// Measures `scene` at this size in format `N`, then calls `f` with it as a zrow screen-space
+/// scene, and what it measured.
 fn with_screen<N: Scalar + Send + Sync, T>(
     scene: &OffScene,
     width: u16,
     height: u16,
-    f: impl FnOnce(&ScreenScene<'_, N, u32>, &Config) -> Result<T, SimError>,
+    f: impl FnOnce(&ScreenScene<'_, N, u32>, &Config, &Requirements) -> Result<T, SimError>,
 ) -> Result<T, SimError> {
     let req = measure::<N>(scene, width, height)?;
-    check_capacity(&req).map_err(|e| core_error(scene, e))?;
     let vertices = scene.vertices_in::<N>()?;
     let faces = faces(scene);
     f(
         &screen_scene(&vertices, &faces),
         &Config::screen(width, height),
+        &req,
     )
 }
 
 /// What a scene's structure allows, for [`choose`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Structure {
-    /// The scene is one closed convex solid (`zrow::structure::closed_convex`).
+    /// The scene is one closed convex solid (`zrow_sim::structure::closed_convex`, the core's rule).
     pub closed_convex: bool,
 }
 
@@ -383,7 +385,10 @@ pub fn choose<N: Scalar + Send + Sync, S: Scene<N> + Sync>(
 
 /// Runs `f` on a thread whose stack holds a renderer of `bytes` (three copies, as an
 /// unoptimised build may make while constructing it) and the work's own frames.
-fn on_big_stack<T: Send>(bytes: usize, f: impl FnOnce() -> T + Send) -> Result<T, SimError> {
+pub(crate) fn on_big_stack<T: Send>(
+    bytes: usize,
+    f: impl FnOnce() -> T + Send,
+) -> Result<T, SimError> {
     std::thread::scope(|s| {
         let worker = std::thread::Builder::new()
             .name("zrow-render".into())
@@ -396,24 +401,34 @@ fn on_big_stack<T: Send>(bytes: usize, f: impl FnOnce() -> T + Send) -> Result<T
     })
 }
 
-/// Draws `scene` with method `algo` at the host's capacities into a new [`Image`], on a thread
-/// of its own (see the module doc); `blame` turns a zrow error into the caller's message.
-/// `auto` is resolved by [`choose`] with the scene's `structure`. Measure and
-/// [`check_capacity`] first: this does not.
+/// Draws `scene` with method `algo` into a new [`Image`], on a thread of its own (see the
+/// module doc); `req` is what the scene measured ([`zrow::requirements()`]), `blame` turns a
+/// zrow error into the caller's message. A scene that fits the host capacities is drawn in
+/// one pass; a larger one band by band ([`crate::bands`]), which any size fits. `auto` is
+/// resolved by [`choose`] with the scene's structure, asked for only then (the closed-convex
+/// check reads the whole mesh); for a scene beyond the host capacities, whose polygons the
+/// ordered check cannot hold, `auto` is cull-only or the scan-line method.
 pub(crate) fn draw<N: Scalar + Send + Sync, S: Scene<N> + Sync>(
     algo: Algo,
     scene: &S,
     cfg: &Config,
-    structure: Structure,
-    blame: impl FnOnce(zrow::Error) -> SimError,
+    req: &Requirements,
+    structure: impl FnOnce() -> Structure,
+    blame: impl Fn(zrow::Error) -> SimError,
 ) -> Result<Image, SimError> {
-    let algo = match algo {
-        Algo::Auto => match choose::<N, S>(scene, cfg, structure) {
-            Ok(a) => a,
-            Err(e) => return Err(blame(e)),
-        },
-        a => a,
-    };
+    let algo = resolve::<N, S>(algo, scene, cfg, req, structure).map_err(&blame)?;
+    if check_capacity(req).is_err() {
+        let slots = req.vertices as usize;
+        return crate::bands::draw(
+            algo,
+            scene,
+            cfg,
+            slots,
+            crate::bands::BAND_POLYGONS,
+            crate::bands::BAND_CORNERS,
+            blame,
+        );
+    }
     match algo {
         Algo::Scanline | Algo::Auto => draw_with::<N, S, HostScanline<N>>(scene, cfg, blame),
         Algo::CullOnly => draw_with::<N, S, HostCullOnly<N>>(scene, cfg, blame),
@@ -425,6 +440,23 @@ pub(crate) fn draw<N: Scalar + Send + Sync, S: Scene<N> + Sync>(
         Algo::Bsp => draw_with::<N, S, HostBsp<N>>(scene, cfg, blame),
         Algo::ABuffer => draw_with::<N, S, HostABuffer<N>>(scene, cfg, blame),
     }
+}
+
+/// `algo`, with `auto` resolved as [`draw`] resolves it.
+pub(crate) fn resolve<N: Scalar + Send + Sync, S: Scene<N> + Sync>(
+    algo: Algo,
+    scene: &S,
+    cfg: &Config,
+    req: &Requirements,
+    structure: impl FnOnce() -> Structure,
+) -> Result<Algo, zrow::Error> {
+    let fits = check_capacity(req).is_ok();
+    Ok(match algo {
+        Algo::Auto if fits => choose::<N, S>(scene, cfg, structure())?,
+        Algo::Auto if structure().closed_convex && cfg.cull == Cull::Back => Algo::CullOnly,
+        Algo::Auto => Algo::Scanline,
+        a => a,
+    })
 }
 
 /// [`draw`] with one method's type.
