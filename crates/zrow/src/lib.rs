@@ -111,7 +111,7 @@ pub use math::{Affine, MathLib, Vec3};
 pub use method::{FrameStats, Renderer};
 pub use number::{Scalar, Q16_16, Q24_8};
 pub use raster::{Config, Cull};
-pub use requirements::{requirements, Requirements};
+pub use requirements::{requirements, requirements_with, Requirements};
 pub use scanline::Scanline;
 pub use scene::{
     Camera, Face, Light, Mesh, MeshIndex, ModelScene, Object, Projection, Scene, ScreenScene,
