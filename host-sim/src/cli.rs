@@ -26,6 +26,7 @@
 
 use crate::error::SimError;
 use crate::model_render::View;
+use crate::output::{print, Output};
 use crate::render::{Algo, Format};
 use std::ffi::OsString;
 use std::path::PathBuf;
@@ -416,44 +417,96 @@ pub fn render(args: &RenderArgs) -> Result<(), SimError> {
     }
 }
 
+/// Loads the model at `path` ([`crate::model::load`]) and prints its warnings on stderr.
+pub(crate) fn load_model(path: &std::path::Path) -> Result<crate::model::LoadedModel, SimError> {
+    let model = crate::model::load(path)?;
+    for w in &model.warnings {
+        eprintln!("warning: {w}");
+    }
+    Ok(model)
+}
+
+/// The converter's progress on stderr: a bar once a conversion has run for a second, and only
+/// when stderr is a terminal (a log or a pipe gets nothing).
+struct ProgressBar {
+    start: std::time::Instant,
+    terminal: bool,
+    bar: std::sync::OnceLock<indicatif::ProgressBar>,
+}
+
+impl Default for ProgressBar {
+    fn default() -> Self {
+        use std::io::IsTerminal;
+        ProgressBar {
+            start: std::time::Instant::now(),
+            terminal: std::io::stderr().is_terminal(),
+            bar: std::sync::OnceLock::new(),
+        }
+    }
+}
+
+impl ProgressBar {
+    fn update(&self, done: usize, total: usize) {
+        if !self.terminal || self.start.elapsed() < std::time::Duration::from_secs(1) {
+            return;
+        }
+        let bar = self.bar.get_or_init(|| {
+            let bar = indicatif::ProgressBar::new(total as u64);
+            if let Ok(style) = indicatif::ProgressStyle::with_template(
+                "measuring views {bar:40} {pos}/{len} ({eta} left)",
+            ) {
+                bar.set_style(style);
+            }
+            bar
+        });
+        bar.set_position(done as u64);
+    }
+
+    fn finish(&self) {
+        if let Some(bar) = self.bar.get() {
+            bar.finish_and_clear();
+        }
+    }
+}
+
 /// Runs `convert`: loads and converts the model, writes the Rust file, prints the report and
 /// the time the conversion took on stdout.
 pub fn convert(args: &ConvertArgs) -> Result<(), SimError> {
+    let out = Output::open(&args.out)?;
     let start = std::time::Instant::now();
-    let converted = crate::convert::convert(&args.model, &args.options)?;
+    let model = load_model(&args.model)?;
+    let bar = ProgressBar::default();
+    let converted = crate::convert::convert_model_with(&model, &args.options, &|done, total| {
+        bar.update(done, total)
+    });
+    bar.finish();
+    let converted = converted?;
     let took = start.elapsed();
-    std::fs::write(&args.out, &converted.rust).map_err(|source| SimError::Io {
-        path: args.out.display().to_string(),
-        action: "write",
-        source,
-    })?;
-    println!("{}", converted.report);
-    println!(
+    out.write(converted.rust.as_bytes())?;
+    print(&converted.report.to_string())?;
+    print(&format!(
         "wrote {} ({} bytes of Rust) in {:.0} ms",
         args.out.display(),
         converted.rust.len(),
         took.as_secs_f64() * 1e3
-    );
-    Ok(())
+    ))
 }
 
 /// Runs `render`: reads and parses the scene, renders it, writes the PNG.
 pub fn render_screen(args: &ScreenArgs) -> Result<(), SimError> {
+    let out = Output::open(&args.out)?;
     let name = args.screen.display().to_string();
-    let data = std::fs::read(&args.screen).map_err(|source| SimError::Io {
-        path: name.clone(),
-        action: "read",
-        source,
-    })?;
+    let data = crate::model::read_input(&args.screen)?;
     let scene = crate::off::parse(&name, &data)?;
     let image =
         crate::render::render_screen(&scene, args.width, args.height, args.algo, args.format)?;
-    crate::png_io::write(&image, &args.out)
+    out.write(&crate::png_io::encode_for(&image, &args.out)?)
 }
 
 /// Runs `render-model`: loads the model, renders the view, writes the PNG.
 pub fn render_model(args: &RenderModelArgs) -> Result<(), SimError> {
-    let model = crate::model::load(&args.model)?;
+    let out = Output::open(&args.out)?;
+    let model = load_model(&args.model)?;
     let image = crate::model_render::render_model_image(
         &model,
         &args.view,
@@ -462,7 +515,7 @@ pub fn render_model(args: &RenderModelArgs) -> Result<(), SimError> {
         args.algo,
         args.format,
     )?;
-    crate::png_io::write(&image, &args.out)
+    out.write(&crate::png_io::encode_for(&image, &args.out)?)
 }
 
 #[cfg(test)]

@@ -73,7 +73,7 @@ use core::fmt::{self, Write as _};
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use zrow::raster::MAX_FACE_VERTICES;
+use zrow::raster::{RasterVertex, MAX_FACE_VERTICES};
 use zrow::{Affine, Config, Face, Mesh, ModelScene, Object, Requirements, Scalar, Vec3, Q16_16};
 
 /// Largest distance of a vertex from its face's best-fit plane that still counts as planar,
@@ -602,6 +602,16 @@ fn lsb(format: Format) -> f64 {
 /// else a face zrow rejects (non-convex, …) or more than 65,536 vertices
 /// ([`SimError::Model`] naming the file and line).
 pub fn convert_model(model: &LoadedModel, opts: &ConvertOptions) -> Result<Converted, SimError> {
+    convert_model_with(model, opts, &|_, _| {})
+}
+
+/// [`convert_model`], calling `progress(done, total)` as views are measured (from several
+/// threads; the command line draws a progress bar with it).
+pub fn convert_model_with(
+    model: &LoadedModel,
+    opts: &ConvertOptions,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Converted, SimError> {
     check_options(opts)?;
     let file = model.file.as_str();
     let mut notes = Vec::new();
@@ -755,8 +765,8 @@ pub fn convert_model(model: &LoadedModel, opts: &ConvertOptions) -> Result<Conve
 
     // 6. Requirements over the views.
     let (views, measured_depth) = match opts.format {
-        Format::Q16_16 => measure_all::<Q16_16>(file, &vertices, &faces, &normals, opts)?,
-        Format::F32 => measure_all::<f32>(file, &vertices, &faces, &normals, opts)?,
+        Format::Q16_16 => measure_all::<Q16_16>(file, &vertices, &faces, &normals, opts, progress)?,
+        Format::F32 => measure_all::<f32>(file, &vertices, &faces, &normals, opts, progress)?,
     };
     // The check views never lower the capacities; if one needed more, it raises them (and
     // the report says so).
@@ -891,6 +901,22 @@ fn check_options(opts: &ConvertOptions) -> Result<(), SimError> {
     }
     if opts.rolls == 0 {
         return usage("rolls must be at least 1".into());
+    }
+    if opts.check_views > MAX_VIEWS {
+        return usage(format!(
+            "bad --checks {}: at most {MAX_VIEWS} (a million views of a 1,000-face model take \
+             minutes; the default is {})",
+            opts.check_views,
+            ConvertOptions::default().check_views
+        ));
+    }
+    let sampled = (opts.directions.saturating_add(6)).saturating_mul(opts.rolls);
+    let searched = (4 * opts.refine_starts).saturating_mul(opts.refine_steps);
+    if sampled > MAX_VIEWS || searched > MAX_VIEWS {
+        return usage(format!(
+            "too many views: (directions + 6) x rolls and 4 x refine starts x steps must each \
+             be at most {MAX_VIEWS}"
+        ));
     }
     Ok(())
 }
@@ -1080,10 +1106,13 @@ impl Rng {
 
 /// `count` uniformly random rotations (xorshift64 from `seed`).
 pub fn random_rotations(count: usize, seed: u64) -> Vec<[[f64; 3]; 3]> {
+    random_rotation_stream(seed).take(count).collect()
+}
+
+/// Uniformly random rotations without end, the sequence [`random_rotations`] begins.
+fn random_rotation_stream(seed: u64) -> impl Iterator<Item = Rot> {
     let mut rng = Rng(seed.max(1));
-    (0..count)
-        .map(|_| random_rotation([rng.next(), rng.next(), rng.next()]))
-        .collect()
+    std::iter::repeat_with(move || random_rotation([rng.next(), rng.next(), rng.next()]))
 }
 
 /// A rotation by `angle` radians about a uniformly random axis (Rodrigues).
@@ -1130,6 +1159,17 @@ pub fn measure_view<N: Scalar, I: zrow::MeshIndex>(
     rot: &[[f64; 3]; 3],
     opts: &ConvertOptions,
 ) -> Result<Requirements, zrow::Error> {
+    measure_view_in(mesh, rot, opts, &mut [])
+}
+
+/// [`measure_view`] with a vertex buffer of `slots` ([`zrow::requirements_with`]: the same
+/// result, faster with room for the mesh's vertices).
+fn measure_view_in<N: Scalar, I: zrow::MeshIndex>(
+    mesh: &Mesh<'_, N, I>,
+    rot: &[[f64; 3]; 3],
+    opts: &ConvertOptions,
+    slots: &mut [RasterVertex<N>],
+) -> Result<Requirements, zrow::Error> {
     let r = rot.map(|row| row.map(|c| c as f32));
     let transform = Affine::from_f32([
         [r[0][0], r[0][1], r[0][2], 0.0],
@@ -1151,17 +1191,26 @@ pub fn measure_view<N: Scalar, I: zrow::MeshIndex>(
         light: light(),
     };
     let cfg = Config::model(opts.width, opts.height);
-    zrow::requirements(&scene, &cfg)
+    zrow::requirements_with(&scene, &cfg, slots)
 }
 
+/// Most views of each kind (sampled, searched, random checks) a conversion measures.
+pub const MAX_VIEWS: usize = 1_000_000;
+
+/// Views measured per batch of random checks (a batch of rotations is held at once).
+const CHECK_BATCH: usize = 4096;
+
 /// Measures every sampled and random view; returns the statistics and the measured eye
-/// distance range.
-fn measure_all<N: Scalar>(
+/// distance range. The views are split over the machine's cores (each with a vertex buffer of
+/// its own, so every shared vertex is projected once per view); the results do not depend on
+/// the number of cores. `progress` is called with the views measured so far and the total.
+fn measure_all<N: Scalar + Send + Sync>(
     file: &str,
     vertices: &[P3],
     faces: &[ConvertedFace],
     normals: &[P3],
     opts: &ConvertOptions,
+    progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<(ViewStats, (f64, f64)), SimError> {
     let misfit = || {
         model_error(
@@ -1199,26 +1248,47 @@ fn measure_all<N: Scalar>(
             },
         }
     };
-    let mut depth = (f64::INFINITY, f64::NEG_INFINITY);
     let d = f64::from(opts.distance);
-    let mut measure = |rot: &Rot| -> Result<Requirements, SimError> {
+    // One view: what it needs, and its eye distance range.
+    let measure = |rot: &Rot, slots: &mut Vec<RasterVertex<N>>| {
+        let mut depth = (f64::INFINITY, f64::NEG_INFINITY);
         for v in vertices {
             let w = d - dot(rot[2], *v);
             depth = (depth.0.min(w), depth.1.max(w));
         }
-        measure_view(&mesh, rot, opts).map_err(blame)
+        let req = measure_view_in(&mesh, rot, opts, slots).map_err(blame)?;
+        Ok::<_, SimError>((req, depth))
     };
+    let sampled = sampled_rotations(opts.directions, opts.rolls);
+    let starts = opts.refine_starts.min(sampled.len());
+    let total = sampled.len() + 4 * starts * opts.refine_steps + opts.check_views;
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let tick = |n: usize| {
+        let now = done.fetch_add(n, std::sync::atomic::Ordering::Relaxed) + n;
+        progress(now, total);
+    };
+    let mut depth = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut widen = |(lo, hi): (f64, f64)| depth = (depth.0.min(lo), depth.1.max(hi));
     let mut stats = ViewStats::default();
-    let mut seen: Vec<(Requirements, Rot)> = Vec::new();
-    for rot in sampled_rotations(opts.directions, opts.rolls) {
-        let req = measure(&rot)?;
+
+    let mut seen: Vec<(Requirements, Rot)> = Vec::with_capacity(sampled.len());
+    for (rot, r) in sampled
+        .iter()
+        .zip(on_cores(&sampled, vertices.len(), |rot, slots| {
+            let r = measure(rot, slots);
+            tick(1);
+            r
+        }))
+    {
+        let (req, range) = r?;
+        widen(range);
         stats.sampled_max = stats.sampled_max.max(req);
         stats.sampled += 1;
-        seen.push((req, rot));
+        seen.push((req, *rot));
     }
     // Local search from the worst sampled views, one capacity at a time: turn the model by a
-    // random small rotation, keep the new orientation when it needs at least as much.
-    let mut rng = Rng(opts.seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
+    // random small rotation, keep the new orientation when it needs at least as much. Each
+    // search has a random stream of its own, so the searches run on any number of cores.
     stats.refined_max = stats.sampled_max;
     let keys: [fn(&Requirements) -> u32; 4] = [
         |r| r.polygons,
@@ -1226,39 +1296,104 @@ fn measure_all<N: Scalar>(
         |r| r.vertices,
         |r| r.active_polygons,
     ];
-    for key in keys {
+    let mut searches = Vec::new();
+    for (k, key) in keys.iter().enumerate() {
         seen.sort_by_key(|(r, _)| std::cmp::Reverse(key(r)));
-        let starts: Vec<(Requirements, Rot)> =
-            seen.iter().take(opts.refine_starts).copied().collect();
-        for (mut best, mut rot) in starts {
+        searches.extend(
+            seen.iter()
+                .take(starts)
+                .enumerate()
+                .map(|(s, &start)| (k, s, start)),
+        );
+    }
+    let sampled_max = stats.sampled_max;
+    let searched = on_cores(
+        &searches,
+        vertices.len(),
+        |&(k, s, (mut best, mut rot)), slots| {
+            let key = keys[k];
+            let stream = (k * starts + s) as u64 + 1;
+            let mut rng = Rng((opts.seed ^ stream.wrapping_mul(0x9E37_79B9_7F4A_7C15)) | 1);
+            let mut out = (sampled_max, (f64::INFINITY, f64::NEG_INFINITY), 0);
             for step in 0..opts.refine_steps {
                 // 4° down to 0.04°.
                 let t = step as f64 / opts.refine_steps.max(1) as f64;
                 let angle = (4.0f64 * 0.01f64.powf(t)).to_radians();
                 let turned = compose(&small_rotation(&mut rng, angle), &rot);
-                let req = measure(&turned)?;
-                stats.refined += 1;
-                stats.refined_max = stats.refined_max.max(req);
+                let (req, (lo, hi)) = measure(&turned, slots)?;
+                tick(1);
+                out = (
+                    out.0.max(req),
+                    (out.1 .0.min(lo), out.1 .1.max(hi)),
+                    out.2 + 1,
+                );
                 if key(&req) >= key(&best) {
                     (best, rot) = (req, turned);
                 }
             }
-        }
+            Ok::<_, SimError>(out)
+        },
+    );
+    for r in searched {
+        let (max, range, count) = r?;
+        widen(range);
+        stats.refined_max = stats.refined_max.max(max);
+        stats.refined += count;
     }
     let capacities = with_margin(&stats.refined_max);
-    for rot in random_rotations(opts.check_views, opts.seed) {
-        let req = measure(&rot)?;
-        if req.polygons > capacities.polygons
-            || req.edges > capacities.edges
-            || req.vertices > capacities.vertices
-            || req.active_polygons > capacities.active_polygons
-        {
-            stats.checked_exceeding += 1;
+    let mut rotations = random_rotation_stream(opts.seed);
+    let mut left = opts.check_views;
+    while left > 0 {
+        let batch: Vec<Rot> = rotations.by_ref().take(left.min(CHECK_BATCH)).collect();
+        left -= batch.len();
+        for r in on_cores(&batch, vertices.len(), |rot, slots| {
+            let r = measure(rot, slots);
+            tick(1);
+            r
+        }) {
+            let (req, range) = r?;
+            widen(range);
+            if req.polygons > capacities.polygons
+                || req.edges > capacities.edges
+                || req.vertices > capacities.vertices
+                || req.active_polygons > capacities.active_polygons
+            {
+                stats.checked_exceeding += 1;
+            }
+            stats.checked_max = stats.checked_max.max(req);
+            stats.checked += 1;
         }
-        stats.checked_max = stats.checked_max.max(req);
-        stats.checked += 1;
     }
     Ok((stats, depth))
+}
+
+/// `f` on every item, the items split in contiguous runs over the machine's cores (each run
+/// with a vertex buffer of `vertices` slots, plus room for what clipping makes); the results
+/// in item order.
+fn on_cores<T: Sync, R: Send, N: Scalar + Send>(
+    items: &[T],
+    vertices: usize,
+    f: impl Fn(&T, &mut Vec<RasterVertex<N>>) -> R + Sync,
+) -> Vec<R> {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let run = items.len().div_ceil(cores).max(1);
+    let slots = || vec![RasterVertex::<N>::default(); vertices + 256];
+    std::thread::scope(|s| {
+        let workers: Vec<_> = items
+            .chunks(run)
+            .map(|chunk| {
+                let f = &f;
+                s.spawn(move || {
+                    let mut slots = slots();
+                    chunk.iter().map(|t| f(t, &mut slots)).collect::<Vec<R>>()
+                })
+            })
+            .collect();
+        workers
+            .into_iter()
+            .flat_map(|w| w.join().unwrap_or_else(|p| std::panic::resume_unwind(p)))
+            .collect()
+    })
 }
 
 /// The model drawn as the firmware would draw it: the converted data in its format, seen from
@@ -1434,6 +1569,57 @@ fn emit(c: &Converted, name: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A vertex buffer (of any size, clipping included: at distance 0.6 the near plane
+    /// cuts the torus) changes nothing measured, and the views split over any number of
+    /// threads give what one thread gives.
+    #[test]
+    fn slots_and_cores_change_nothing_measured() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../assets/models/torus.off");
+        let model = crate::model::load(std::path::Path::new(path)).unwrap();
+        let verts: Vec<Vec3<Q16_16>> = model
+            .positions
+            .iter()
+            .map(|p| Vec3::from_f32(*p).unwrap())
+            .collect();
+        let faces: Vec<Face<'_, u32>> = model
+            .faces
+            .iter()
+            .map(|f| Face {
+                indices: &f.indices,
+                color: f.color,
+                alpha: 255,
+            })
+            .collect();
+        let mesh = Mesh::new(&verts, &faces);
+        let mut clipped = 0;
+        for distance in [3.0, 0.6] {
+            let opts = ConvertOptions {
+                distance,
+                ..ConvertOptions::default()
+            };
+            let rotations = random_rotations(200, 99);
+            let alone: Vec<_> = rotations
+                .iter()
+                .map(|r| measure_view(&mesh, r, &opts).unwrap())
+                .collect();
+            for extra in [0, 5, 256] {
+                let split = on_cores(&rotations, verts.len() + extra, |r, slots| {
+                    measure_view_in(&mesh, r, &opts, slots).unwrap()
+                });
+                assert_eq!(split, alone, "distance {distance}, {extra} extra slots");
+            }
+            let few = &mut [RasterVertex::default(); 7];
+            for (r, want) in rotations.iter().zip(&alone) {
+                assert_eq!(measure_view_in(&mesh, r, &opts, few).unwrap(), *want);
+            }
+            clipped += alone
+                .iter()
+                .filter(|r| r.vertices as usize > verts.len())
+                .count();
+        }
+        assert!(clipped > 0, "no view made vertices by clipping");
+    }
 
     #[test]
     fn index_type_boundaries() {

@@ -547,7 +547,11 @@ pub fn parse_args(args: &[OsString]) -> Result<DemoArgs, SimError> {
 pub fn run(args: &[OsString]) -> Result<(), SimError> {
     let args = parse_args(args)?;
     // A model that does not load is an error (file and line), before any window opens.
-    let model = args.model.as_deref().map(crate::model::load).transpose()?;
+    let model = args
+        .model
+        .as_deref()
+        .map(crate::cli::load_model)
+        .transpose()?;
     let model = model.as_ref();
     if let Some(path) = &args.dump_expected {
         return write_png(&first_frame(true, model), path, SCALE);
@@ -573,8 +577,7 @@ pub fn run(args: &[OsString]) -> Result<(), SimError> {
          sudo apt-get install -y libsdl2-dev && cargo run --release -p zrow-sim --features window"
     );
     write_png(&first_frame(false, model), Path::new(FALLBACK_PNG), 1)?;
-    println!("zrow-sim: {why}");
-    Ok(())
+    crate::output::print(&format!("zrow-sim: {why}"))
 }
 
 #[cfg(test)]

@@ -43,6 +43,7 @@ pub mod error;
 pub mod model;
 pub mod model_render;
 pub mod off;
+pub mod output;
 pub mod png_io;
 pub mod render;
 pub mod structure;

@@ -11,10 +11,7 @@ fn main() -> ExitCode {
         zrow_sim::demo::run(&args)
     } else {
         cli::parse_args(args).and_then(|cmd| match cmd {
-            Command::Help => {
-                println!("{}", cli::USAGE);
-                Ok(())
-            }
+            Command::Help => zrow_sim::output::print(cli::USAGE),
             Command::Render(args) => cli::render(&args),
         })
     };

@@ -3,9 +3,9 @@
 //!
 //! - **OBJ**: polygons are kept as they are (zrow draws convex polygons; one with more than
 //!   [`MAX_FACE_VERTICES`] vertices is split into a fan). A face takes the diffuse colour
-//!   (`Kd`) of its material when the MTL file next to the model gives one, else
-//!   [`DEFAULT_RGB`]. A missing or unreadable MTL file is not an error: the faces are drawn in
-//!   the default colour.
+//!   (`Kd`) of its material when the MTL file its `mtllib` line names gives one, else
+//!   [`DEFAULT_RGB`]. A missing, unreadable or malformed MTL file is not an error: the faces
+//!   are drawn in the default colour and [`LoadedModel::warnings`] says which file and why.
 //! - **STL**: every triangle in [`DEFAULT_RGB`]. Binary and ASCII are told apart by the size
 //!   the binary header promises, so a binary file whose header happens to start with `solid`
 //!   still loads.
@@ -19,6 +19,12 @@
 //! size, millimetres or kilometres, thus needs the same camera, and fits Q16.16 with room to
 //! spare.
 //!
+//! **Input limits**: [`load`] reads only regular files of at most [`MAX_FILE_BYTES`] bytes, and
+//! refuses anything else before reading a byte ([`read_input`]): a device such as `/dev/zero`,
+//! a FIFO, a socket or a directory could never end or block forever, and a larger file would
+//! need gigabytes of memory. The same holds for the MTL files an OBJ names. Within the limit,
+//! loading and drawing take time and memory in proportion to the file.
+//!
 //! **Errors**: every malformed file is a [`ModelError`] naming the file and where: the line
 //! (`FILE:LINE: message`) for the text formats, the triangle and its byte offset for binary STL.
 //! `tobj`'s and `stl_io`'s own errors carry no position, so each text file is first checked
@@ -31,7 +37,9 @@ use crate::off::shown;
 use crate::off::{self, rgb8_to_rgb565};
 use core::fmt;
 use embedded_graphics::pixelcolor::Rgb565;
+use std::cell::RefCell;
 use std::collections::HashMap;
+use std::io::{self, Read};
 use std::path::Path;
 use zrow::raster::MAX_FACE_VERTICES;
 use zrow::{Face, Mesh, Scalar, Vec3};
@@ -42,6 +50,57 @@ pub const DEFAULT_RGB: [u8; 3] = [200, 200, 200];
 /// Most vertices a model may have: its faces index them with 32 bits ([`zrow::MeshIndex`] for
 /// `u32`; the converter, for the firmware, narrows them to `u8` or `u16`).
 pub const MAX_VERTICES: usize = off::MAX_VERTICES;
+
+/// Largest file [`load`] (and the `zrow-sim` commands) read: 256 MiB. That is about seven
+/// million triangles in OFF; memory while drawing grows with the file, about nine times its size
+/// (the README's scale table).
+pub const MAX_FILE_BYTES: u64 = 256 << 20;
+
+/// Reads an input file whole, after checking that it is a regular file of at most
+/// [`MAX_FILE_BYTES`] bytes. A directory, device, FIFO or socket is refused before it is opened,
+/// and a file that grows past the limit while being read is refused too: reading never blocks on
+/// a pipe nor runs without end.
+///
+/// ```
+/// use zrow_sim::{model::read_input, SimError};
+/// let err = read_input(std::path::Path::new("/dev/zero")).unwrap_err();
+/// assert!(err.to_string().contains("not a regular file"), "{err}");
+/// ```
+pub fn read_input(path: &Path) -> Result<Vec<u8>, SimError> {
+    let io_error = |source: io::Error| SimError::Io {
+        path: path.display().to_string(),
+        action: "read",
+        source,
+    };
+    let refuse = |why: String| io_error(io::Error::new(io::ErrorKind::InvalidInput, why));
+    let check = |meta: &std::fs::Metadata| {
+        if !meta.is_file() {
+            return Err(refuse(
+                "not a regular file (a directory, device, pipe or socket is never read)".into(),
+            ));
+        }
+        if meta.len() > MAX_FILE_BYTES {
+            return Err(refuse(format!(
+                "{} bytes, more than the {MAX_FILE_BYTES} bytes an input file may have",
+                meta.len()
+            )));
+        }
+        Ok(meta.len())
+    };
+    check(&std::fs::metadata(path).map_err(io_error)?)?;
+    let file = std::fs::File::open(path).map_err(io_error)?;
+    let len = check(&file.metadata().map_err(io_error)?)?;
+    let mut data = Vec::with_capacity(len as usize);
+    file.take(MAX_FILE_BYTES + 1)
+        .read_to_end(&mut data)
+        .map_err(io_error)?;
+    if data.len() as u64 > MAX_FILE_BYTES {
+        return Err(refuse(format!(
+            "grew past the {MAX_FILE_BYTES} bytes an input file may have while being read"
+        )));
+    }
+    Ok(data)
+}
 
 /// Where in its file a vertex or face came from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -126,6 +185,10 @@ pub struct LoadedModel {
     pub centre: [f32; 3],
     /// See `centre`.
     pub scale: f32,
+    /// What was read but not used, one line each, naming the file: an OBJ's material library
+    /// that is missing, unreadable or malformed (its faces are drawn in [`DEFAULT_RGB`]). The
+    /// command line prints them on stderr as `warning: …`.
+    pub warnings: Vec<String>,
 }
 
 impl LoadedModel {
@@ -205,11 +268,7 @@ pub fn load(path: &Path) -> Result<LoadedModel, SimError> {
             "unknown model format: expected a file ending in .obj, .stl or .off",
         )
     })?;
-    let data = std::fs::read(path).map_err(|source| SimError::Io {
-        path: file.clone(),
-        action: "read",
-        source,
-    })?;
+    let data = read_input(path)?;
     let dir = path.parent().unwrap_or(Path::new("."));
     parse(&file, format, &data, dir)
 }
@@ -283,6 +342,7 @@ fn finish(file: &str, raw: Raw) -> Result<LoadedModel, ModelError> {
         faces: raw.faces,
         centre: centre.map(|c| c as f32),
         scale: scale as f32,
+        warnings: Vec::new(),
     })
 }
 
@@ -464,12 +524,27 @@ fn parse_obj(file: &str, data: &[u8], dir: &Path) -> Result<LoadedModel, ModelEr
         ignore_lines: true,
         ..Default::default()
     };
+    let warnings = RefCell::new(Vec::new());
     let (models, materials) =
         tobj::load_obj_buf(&mut std::io::Cursor::new(data), &options, |mtl| {
-            tobj::load_mtl(dir.join(mtl))
+            let path = dir.join(mtl);
+            let warn = |why: String| {
+                warnings.borrow_mut().push(format!(
+                    "{file}: material library {}: {why}; its faces are drawn in the default colour",
+                    path.display()
+                ));
+                Err(tobj::LoadError::OpenFileFailed)
+            };
+            match read_input(&path) {
+                Ok(bytes) => tobj::load_mtl_buf(&mut std::io::Cursor::new(bytes))
+                    .or_else(|e| warn(format!("cannot parse it: {e}"))),
+                Err(SimError::Io { source, .. }) => warn(source.to_string()),
+                Err(e) => warn(e.to_string()),
+            }
         })
         .map_err(|e| ModelError::new(file, None, format!("cannot read OBJ: {e}")))?;
     let materials = materials.unwrap_or_default();
+    let warnings = warnings.into_inner();
 
     // Vertex lines by exact position (tobj re-indexes per object).
     let mut line_of: HashMap<[u32; 3], usize> = HashMap::new();
@@ -562,7 +637,9 @@ fn parse_obj(file: &str, data: &[u8], dir: &Path) -> Result<LoadedModel, ModelEr
             }
         }
     }
-    finish(file, raw)
+    let mut model = finish(file, raw)?;
+    model.warnings = warnings;
+    Ok(model)
 }
 
 // ---------------------------------------------------------------------------------------------

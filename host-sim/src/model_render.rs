@@ -223,7 +223,7 @@ fn structure<N: Scalar>(scene: &ModelScene<'_, N, u32>) -> Structure {
     }
 }
 
-/// The method `auto` chooses for `model` seen from `view` ([`choose`]: cull-only for a
+/// The method `auto` chooses for `model` seen from `view` ([`crate::render::choose`]: cull-only for a
 /// closed convex model, ordered where its check passes, else the scan-line method).
 pub fn choose_model(
     model: &LoadedModel,

@@ -2,6 +2,7 @@
 //! are read back as 8-bit RGB for comparison.
 
 use crate::error::SimError;
+use crate::output::Output;
 use crate::render::Image;
 use std::io::Write;
 use std::path::Path;
@@ -16,20 +17,21 @@ pub fn encode(image: &Image, out: impl Write) -> Result<(), png::EncodingError> 
     writer.finish()
 }
 
-/// Writes `image` to `path` as an 8-bit RGB PNG. The file is only created once the frame is
-/// encoded, so a failed render never leaves a file behind.
-pub fn write(image: &Image, path: &Path) -> Result<(), SimError> {
-    let name = path.display().to_string();
+/// Encodes `image` as an 8-bit RGB PNG in memory; errors name `path`, where it will go.
+pub fn encode_for(image: &Image, path: &Path) -> Result<Vec<u8>, SimError> {
     let mut bytes = Vec::new();
     encode(image, &mut bytes).map_err(|source| SimError::Png {
-        path: name.clone(),
+        path: path.display().to_string(),
         source,
     })?;
-    std::fs::write(path, bytes).map_err(|source| SimError::Io {
-        path: name,
-        action: "write",
-        source,
-    })
+    Ok(bytes)
+}
+
+/// Writes `image` to `path` as an 8-bit RGB PNG, through [`Output`]: the file is only put in
+/// place once the frame is encoded and written, so a failed run never leaves a file behind.
+pub fn write(image: &Image, path: &Path) -> Result<(), SimError> {
+    let out = Output::open(path)?;
+    out.write(&encode_for(image, path)?)
 }
 
 /// An 8-bit RGB picture read from a PNG.
