@@ -5,7 +5,7 @@
 //! converter's one-line error naming file and line.
 
 use std::path::{Path, PathBuf};
-use zrow_sim::convert::{write_for_build, ConvertOptions};
+use zrow_model::convert::{write_for_build, ConvertOptions};
 
 fn main() {
     let out = PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));

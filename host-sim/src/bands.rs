@@ -9,12 +9,12 @@
 //! render would see, so the pixels are those of one render with tables sized to the whole
 //! scene: a model of any size renders, in memory proportional to its polygons.
 
-use crate::error::SimError;
 use crate::render::{
     check_capacity, on_big_stack, Algo, HostABuffer, HostBsp, HostCullOnly, HostDepthSort,
     HostOrdered, HostScanline, HostTiled, HostWarnock, HostZBuffer, Image, HOST_EDGES,
     HOST_POLYGONS,
 };
+use crate::SimError;
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 use std::ops::Range;
 use zrow::geometry::ViewDepth;

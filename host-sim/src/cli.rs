@@ -24,10 +24,10 @@
 //! `--out` are required; `--size` defaults to 240x240 (the ST7789 panel), `--algo` to `scanline` and
 //! `--format` to `q16.16`. A flag given twice, an unknown flag or a bad value is a usage error.
 
-use crate::error::SimError;
 use crate::model_render::View;
 use crate::output::{print, Output};
 use crate::render::{Algo, Format};
+use crate::SimError;
 use std::ffi::OsString;
 use std::path::PathBuf;
 

@@ -14,10 +14,10 @@
 //! Everything here works without SDL: [`first_frame`] and [`write_png`] give the frame the
 //! window opens on as a PNG. The window itself is `crate::window` (feature `window`).
 
-use crate::error::SimError;
 use crate::model::LoadedModel;
 use crate::model_render;
 use crate::render::{Algo, Format};
+use crate::SimError;
 use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;

@@ -10,17 +10,20 @@
 //! The pipeline, in the order a command goes through it:
 //!
 //! 1. [`cli`] parses the arguments;
-//! 2. [`off`] parses the scene file, every error naming its file and line;
+//! 2. [`off`] ([`zrow_model::off`]) parses the scene file, every error naming its file and
+//!    line;
 //! 3. [`render`] builds a [`zrow::ScreenScene`], measures it with [`zrow::requirements()`] and
 //!    renders it with the chosen method and number format into an [`render::Image`];
 //! 4. [`png_io`] writes the PNG.
 //!
-//! Model mode (`zrow-sim render-model --model FILE …`) goes the same way with [`model`] loading
+//! Model mode (`zrow-sim render-model --model FILE …`) goes the same way with [`model`]
+//! ([`zrow_model::model`]) loading
 //! an OBJ, STL or OFF model into the unit sphere and [`model_render`] drawing it from an
 //! orbiting camera under a fixed light ([`model_render::render_model_image`], which the
 //! window shares).
 //!
-//! `zrow-sim convert --model FILE --out FILE.rs` ([`convert`]) turns a model into const Rust
+//! `zrow-sim convert --model FILE --out FILE.rs` ([`convert`], the converter of
+//! [`zrow_model::convert`]) turns a model into const Rust
 //! data for flash with the scan-line capacities it needs from any orientation, and reports
 //! every change it made, the quantisation error and the RAM.
 //!
@@ -39,15 +42,16 @@ pub mod bands;
 pub mod cli;
 pub mod convert;
 pub mod demo;
-pub mod error;
-pub mod model;
 pub mod model_render;
-pub mod off;
 pub mod output;
 pub mod png_io;
 pub mod render;
-pub mod structure;
 #[cfg(feature = "window")]
 pub mod window;
 
-pub use error::SimError;
+/// Loading, the OFF format, structure analysis and the error type come from
+/// [`zrow_model`], the host crate a firmware's build script uses too.
+pub use zrow_model::{error, model, off, structure};
+
+/// Everything that can stop a command ([`zrow_model::Error`]), printing as one line.
+pub use zrow_model::Error as SimError;

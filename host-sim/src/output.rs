@@ -10,7 +10,7 @@
 //! as the reader having seen enough: the command ends quietly, with success, instead of
 //! panicking as `println!` does.
 
-use crate::error::SimError;
+use crate::SimError;
 use std::fs::{File, OpenOptions};
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};

@@ -1,9 +1,9 @@
 //! PNG in and out: frames are written as 8-bit RGB (no alpha), exactly their size; references
 //! are read back as 8-bit RGB for comparison.
 
-use crate::error::SimError;
 use crate::output::Output;
 use crate::render::Image;
+use crate::SimError;
 use std::io::Write;
 use std::path::Path;
 
@@ -20,9 +20,10 @@ pub fn encode(image: &Image, out: impl Write) -> Result<(), png::EncodingError> 
 /// Encodes `image` as an 8-bit RGB PNG in memory; errors name `path`, where it will go.
 pub fn encode_for(image: &Image, path: &Path) -> Result<Vec<u8>, SimError> {
     let mut bytes = Vec::new();
-    encode(image, &mut bytes).map_err(|source| SimError::Png {
+    encode(image, &mut bytes).map_err(|e| SimError::Io {
         path: path.display().to_string(),
-        source,
+        action: "encode PNG",
+        source: std::io::Error::other(e),
     })?;
     Ok(bytes)
 }

@@ -11,8 +11,8 @@
 //! stack. It is therefore built and run on a thread of its own with a stack sized from
 //! [`HostScanline::RAM_BYTES`].
 
-use crate::error::SimError;
 use crate::off::OffScene;
+use crate::SimError;
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 use zrow::Scanline;
 use zrow::{Config, Face, FrameBuffer, Mesh, RenderError, Renderer, Requirements, Scalar};
@@ -131,39 +131,7 @@ fn join_names<T>(all: &[(&str, T)]) -> String {
     all.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
 }
 
-/// The number format the renderer computes in, by its `--format` name.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum Format {
-    /// Q16.16 fixed point (the microcontroller's format; the default).
-    #[default]
-    Q16_16,
-    /// IEEE single precision.
-    F32,
-}
-
-impl Format {
-    /// Every format with its name.
-    pub const ALL: &'static [(&'static str, Format)] =
-        &[("q16.16", Format::Q16_16), ("f32", Format::F32)];
-
-    /// The format called `name`, if there is one.
-    pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL.iter().find(|(n, _)| *n == name).map(|&(_, f)| f)
-    }
-
-    /// Its `--format` name (also zrow's [`Scalar::NAME`]).
-    pub fn name(self) -> &'static str {
-        match self {
-            Format::Q16_16 => Q16_16::NAME,
-            Format::F32 => f32::NAME,
-        }
-    }
-
-    /// The accepted names, comma-separated (for messages).
-    pub fn names() -> String {
-        join_names(Self::ALL)
-    }
-}
+pub use zrow_model::Format;
 
 /// A rendered frame in Rgb565, row-major.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -1,8 +1,8 @@
 //! # zrow-byo — bring your own model
 //!
-//! The build-time path of "model only what a scene requires": `build.rs` runs zrow-sim's
-//! converter (`zrow_sim::convert::write_for_build` — checks, quantisation, capacities over
-//! every orientation) on a model file, and [`zrow::include_mesh!`] pulls the generated const
+//! The build-time path of "model only what a scene requires": `build.rs` runs the converter
+//! of the `zrow-model` crate (`zrow_model::convert::write_for_build` — checks, quantisation,
+//! capacities over every orientation) on a model file, and [`zrow::include_mesh!`] pulls the generated const
 //! data in. Everything below lives in flash; the only RAM is the renderer, whose capacities
 //! the converter measured:
 //!
@@ -14,9 +14,11 @@
 //! assert_eq!(torus::MESH.faces.len(), torus::FACES.len());
 //! ```
 //!
-//! The same in a firmware crate: add `zrow-sim` as a build-dependency, call
+//! The same in a firmware crate: add `zrow-model` as a build-dependency (a host crate with no
+//! simulator and no SDL in its dependency tree), call
 //! `write_for_build(model, &options, out_dir, "name")` from `build.rs`, and
-//! `zrow::include_mesh!("name")` where the mesh is wanted.
+//! `zrow::include_mesh!("name")` where the mesh is wanted. The generated code names only
+//! `zrow` (colours as `zrow::Rgb565`), so the crate needs no other dependency for it.
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]

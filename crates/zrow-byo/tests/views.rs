@@ -3,13 +3,13 @@
 //! generously sized one draws; the cube, a closed convex solid, is drawn exactly by culling
 //! alone at the converter's capacities.
 
-use embedded_graphics_core::pixelcolor::Rgb565;
+use zrow::Rgb565;
 use zrow::{
     Affine, Config, FrameBuffer, Mesh, MeshIndex, ModelScene, Object, Renderer, Scanline, Q16_16,
 };
 use zrow_byo::{cube, torus};
-use zrow_sim::convert::random_rotations;
-use zrow_sim::model_render::{light, View};
+use zrow_model::camera::{light, View};
+use zrow_model::convert::random_rotations;
 
 type Big = Scanline<Q16_16, 240, 8192, 2048, 512>;
 

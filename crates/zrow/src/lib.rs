@@ -106,6 +106,10 @@ pub mod warnock;
 /// The z-buffer: a depth and a colour for every pixel of the frame.
 pub mod zbuffer;
 
+/// The colour types zrow names (from `embedded-graphics-core`), so that code using zrow, and
+/// the Rust a converter emits (`zrow::Rgb565::new(…)`), need no other crate.
+pub use embedded_graphics_core::pixelcolor;
+pub use embedded_graphics_core::pixelcolor::Rgb565;
 pub use error::{Error, RenderError, Table};
 pub use math::{Affine, MathLib, Vec3};
 pub use method::{FrameStats, Renderer};

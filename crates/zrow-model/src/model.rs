@@ -32,15 +32,15 @@
 //! or negative and refer to vertices already defined; ASCII STL: the `facet` / `outer loop` /
 //! `vertex` ×3 / `endloop` / `endfacet` structure). Nothing in here panics, whatever the bytes.
 
-use crate::error::SimError;
+use crate::error::Error;
 use crate::off::shown;
 use crate::off::{self, rgb8_to_rgb565};
 use core::fmt;
-use embedded_graphics::pixelcolor::Rgb565;
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::io::{self, Read};
 use std::path::Path;
+use zrow::pixelcolor::Rgb565;
 use zrow::raster::MAX_FACE_VERTICES;
 use zrow::{Face, Mesh, Scalar, Vec3};
 
@@ -62,12 +62,12 @@ pub const MAX_FILE_BYTES: u64 = 256 << 20;
 /// a pipe nor runs without end.
 ///
 /// ```
-/// use zrow_sim::{model::read_input, SimError};
+/// use zrow_model::model::read_input;
 /// let err = read_input(std::path::Path::new("/dev/zero")).unwrap_err();
 /// assert!(err.to_string().contains("not a regular file"), "{err}");
 /// ```
-pub fn read_input(path: &Path) -> Result<Vec<u8>, SimError> {
-    let io_error = |source: io::Error| SimError::Io {
+pub fn read_input(path: &Path) -> Result<Vec<u8>, Error> {
+    let io_error = |source: io::Error| Error::Io {
         path: path.display().to_string(),
         action: "read",
         source,
@@ -197,7 +197,7 @@ impl LoadedModel {
     pub fn with_mesh<N: Scalar, R>(
         &self,
         f: impl FnOnce(&Mesh<'_, N, u32>) -> R,
-    ) -> Result<R, SimError> {
+    ) -> Result<R, Error> {
         let mut vertices = Vec::with_capacity(self.positions.len());
         for (k, &p) in self.positions.iter().enumerate() {
             let v = Vec3::<N>::from_f32(p).ok_or_else(|| {
@@ -259,7 +259,7 @@ impl ModelFormat {
 
 /// Loads the model at `path` (format by extension: `.obj`, `.stl`, `.off`) and normalises
 /// it into the unit sphere.
-pub fn load(path: &Path) -> Result<LoadedModel, SimError> {
+pub fn load(path: &Path) -> Result<LoadedModel, Error> {
     let file = path.display().to_string();
     let format = ModelFormat::of(path).ok_or_else(|| {
         ModelError::new(
@@ -280,7 +280,7 @@ pub fn parse(
     format: ModelFormat,
     data: &[u8],
     dir: &Path,
-) -> Result<LoadedModel, SimError> {
+) -> Result<LoadedModel, Error> {
     match format {
         ModelFormat::Obj => Ok(parse_obj(file, data, dir)?),
         ModelFormat::Stl => Ok(parse_stl(file, data)?),
@@ -349,7 +349,7 @@ fn finish(file: &str, raw: Raw) -> Result<LoadedModel, ModelError> {
 // ---------------------------------------------------------------------------------------------
 // OFF
 
-fn parse_off(file: &str, data: &[u8]) -> Result<LoadedModel, SimError> {
+fn parse_off(file: &str, data: &[u8]) -> Result<LoadedModel, Error> {
     let scene = off::parse(file, data)?;
     let raw = Raw {
         positions: scene.vertices.iter().map(|v| v.position).collect(),
@@ -538,7 +538,7 @@ fn parse_obj(file: &str, data: &[u8], dir: &Path) -> Result<LoadedModel, ModelEr
             match read_input(&path) {
                 Ok(bytes) => tobj::load_mtl_buf(&mut std::io::Cursor::new(bytes))
                     .or_else(|e| warn(format!("cannot parse it: {e}"))),
-                Err(SimError::Io { source, .. }) => warn(source.to_string()),
+                Err(Error::Io { source, .. }) => warn(source.to_string()),
                 Err(e) => warn(e.to_string()),
             }
         })

@@ -20,7 +20,7 @@
 //! to a renderer's number format ([`OffScene::vertices_in`]) can still blame the right line.
 
 use core::fmt;
-use embedded_graphics::pixelcolor::Rgb565;
+use zrow::pixelcolor::Rgb565;
 use zrow::raster::MAX_FACE_VERTICES;
 use zrow::{Scalar, Vec3};
 
@@ -594,7 +594,7 @@ mod tests {
 
     #[test]
     fn colour_rounds_to_nearest_rgb565() {
-        use embedded_graphics::pixelcolor::RgbColor;
+        use zrow::pixelcolor::RgbColor;
         let c = rgb8_to_rgb565([255, 128, 4]);
         assert_eq!((c.r(), c.g(), c.b()), (31, 32, 0));
         assert_eq!(rgb8_to_rgb565([0, 0, 0]), Rgb565::BLACK);

@@ -1,8 +1,9 @@
-//! The simulator's error: everything that can stop a command, each printing as one line.
+//! The one error type of loading, converting and (in `zrow-sim`) drawing: everything that can
+//! stop a conversion or a command, each printing as one line.
 //!
-//! `main` prints it as `error: {this}` on stderr and exits non-zero ([`SimError::exit_code`]).
-//! Errors about a scene file start with `FILE:LINE:` (or `FILE:` when no line is to blame, as
-//! for a capacity the whole scene exceeds).
+//! A build script prints it as `error: {this}`; `zrow-sim` does the same on stderr and exits
+//! non-zero ([`Error::exit_code`]). Errors about a file start with `FILE:LINE:` (or `FILE:`
+//! when no line is to blame, as for a capacity the whole scene exceeds).
 
 use crate::model::ModelError;
 use crate::off::OffError;
@@ -12,8 +13,8 @@ use std::io;
 /// What stopped a command.
 #[derive(Debug)]
 #[non_exhaustive]
-pub enum SimError {
-    /// The command line is wrong (the message says how).
+pub enum Error {
+    /// An option or a command-line argument is wrong (the message says how).
     Usage(String),
     /// The scene file does not parse.
     Off(OffError),
@@ -38,74 +39,65 @@ pub enum SimError {
         /// Why it failed.
         source: io::Error,
     },
-    /// The PNG encoder failed.
-    Png {
-        /// The output file.
-        path: String,
-        /// Why it failed.
-        source: png::EncodingError,
-    },
-    /// The render thread could not be started.
+    /// A worker thread could not be started.
     Thread(io::Error),
 }
 
-impl SimError {
+impl Error {
     /// The process exit code: 2 for a wrong command line, 1 for everything else.
     pub fn exit_code(&self) -> u8 {
         match self {
-            SimError::Usage(_) => 2,
+            Error::Usage(_) => 2,
             _ => 1,
         }
     }
 }
 
-impl fmt::Display for SimError {
+impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            SimError::Usage(m) => write!(f, "{m} (see `zrow-sim --help`)"),
-            SimError::Off(e) => e.fmt(f),
-            SimError::Model(e) => e.fmt(f),
-            SimError::Scene {
+            Error::Usage(m) => m.fmt(f),
+            Error::Off(e) => e.fmt(f),
+            Error::Model(e) => e.fmt(f),
+            Error::Scene {
                 file,
                 line: Some(line),
                 error,
             } => write!(f, "{file}:{line}: {error}"),
-            SimError::Scene {
+            Error::Scene {
                 file,
                 line: None,
                 error,
             } => write!(f, "{file}: {error}"),
-            SimError::Io {
+            Error::Io {
                 path,
                 action,
                 source,
             } => write!(f, "{path}: cannot {action}: {source}"),
-            SimError::Png { path, source } => write!(f, "{path}: cannot encode PNG: {source}"),
-            SimError::Thread(e) => write!(f, "cannot start the render thread: {e}"),
+            Error::Thread(e) => write!(f, "cannot start a worker thread: {e}"),
         }
     }
 }
 
-impl std::error::Error for SimError {
+impl std::error::Error for Error {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match self {
-            SimError::Off(e) => Some(e),
-            SimError::Model(e) => Some(e),
-            SimError::Io { source, .. } | SimError::Thread(source) => Some(source),
-            SimError::Png { source, .. } => Some(source),
+            Error::Off(e) => Some(e),
+            Error::Model(e) => Some(e),
+            Error::Io { source, .. } | Error::Thread(source) => Some(source),
             _ => None,
         }
     }
 }
 
-impl From<OffError> for SimError {
+impl From<OffError> for Error {
     fn from(e: OffError) -> Self {
-        SimError::Off(e)
+        Error::Off(e)
     }
 }
 
-impl From<ModelError> for SimError {
+impl From<ModelError> for Error {
     fn from(e: ModelError) -> Self {
-        SimError::Model(e)
+        Error::Model(e)
     }
 }

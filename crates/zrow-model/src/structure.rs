@@ -206,7 +206,7 @@ impl Tree {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use embedded_graphics::pixelcolor::Rgb565;
+    use zrow::pixelcolor::Rgb565;
     use zrow::{Face, Vec3};
 
     fn mesh_check(points: &[[f32; 3]], faces: &[&[u32]]) -> (bool, bool) {
