@@ -350,6 +350,36 @@ where
                 },
             );
             match drawn {
+                // A model beyond the window's fixed capacities: renderers sized to the model.
+                Ok(Some(Err(RenderError::Scene(zrow::Error::Capacity { .. })))) => {
+                    let sized = model_render::render_model_culled(
+                        model,
+                        &orbit,
+                        (SIZE as u16, SIZE as u16),
+                        view.algo(),
+                        view.format,
+                        cull,
+                    );
+                    let result = match sized {
+                        Ok((image, req)) => {
+                            let area = Rectangle::new(Point::zero(), Size::new(SIZE, SIZE));
+                            match display.fill_contiguous(&area, image.pixels) {
+                                Ok(()) => Ok(FrameStats {
+                                    polygons: req.polygons,
+                                    edges: req.edges,
+                                    max_active: req.active_polygons,
+                                    ..FrameStats::default()
+                                }),
+                                Err(e) => Err(format!("display: {e:?}")),
+                            }
+                        }
+                        Err(e) => Err(e.to_string()),
+                    };
+                    return Frame {
+                        time: start.elapsed(),
+                        result,
+                    };
+                }
                 Ok(out) => out,
                 Err(e) => {
                     return Frame {
@@ -744,5 +774,50 @@ mod tests {
             view.apply(Action::NextScene);
         }
         assert!(view.shows_model());
+    }
+
+    /// A model whose view needs more than the window's fixed capacities is drawn by
+    /// renderers sized to it: the frame the command line draws, not a capacity error.
+    #[test]
+    fn a_model_beyond_the_window_capacities_still_draws() {
+        let (nu, nv) = (80, 40);
+        let mut off = format!("OFF\n{} {} 0\n", nu * nv, 2 * nu * nv);
+        for i in 0..nu {
+            let a = std::f64::consts::TAU * i as f64 / nu as f64;
+            for j in 0..nv {
+                let b = std::f64::consts::TAU * j as f64 / nv as f64;
+                let r = 1.0 + 0.35 * b.cos();
+                off += &format!("{} {} {}\n", r * a.cos(), 0.35 * b.sin(), r * a.sin());
+            }
+        }
+        for i in 0..nu {
+            for j in 0..nv {
+                let (p, q) = (i * nv + j, (i + 1) % nu * nv + j);
+                let (p1, q1) = (i * nv + (j + 1) % nv, (i + 1) % nu * nv + (j + 1) % nv);
+                off += &format!("3 {p} {p1} {q}\n3 {q} {p1} {q1}\n");
+            }
+        }
+        let format = crate::model::ModelFormat::Off;
+        let model = crate::model::parse("t.off", format, off.as_bytes(), Path::new(".")).unwrap();
+        let view = View {
+            has_model: true,
+            ..View::default()
+        };
+        let mut display = new_display();
+        let frame = render(&mut Renderers::new(), &view, Some(&model), &mut display);
+        let stats = frame.result.unwrap();
+        assert!(stats.polygons as usize > DEMO_POLYGONS, "{stats:?}");
+        let orbit = model_render::View {
+            yaw_deg: 0.0,
+            ..model_render::View::default()
+        };
+        let (side, q16) = (SIZE as u16, Format::Q16_16);
+        let want =
+            model_render::render_model_image(&model, &orbit, side, side, Algo::Scanline, q16)
+                .unwrap();
+        for (k, &c) in want.pixels.iter().enumerate() {
+            let p = Point::new((k % SIZE as usize) as i32, (k / SIZE as usize) as i32);
+            assert_eq!(display.get_pixel(p), c, "pixel {p:?}");
+        }
     }
 }

@@ -17,7 +17,7 @@ use crate::model::{LoadedModel, ModelError};
 use crate::render::{draw, resolve, Algo, Format, Image, Structure};
 use crate::structure::closed_convex;
 use crate::SimError;
-use zrow::{Affine, Config, ModelScene, Object, Requirements, Scalar};
+use zrow::{Affine, Config, Cull, ModelScene, Object, Requirements, Scalar};
 use zrow::{Scene, Q16_16};
 
 pub use zrow_model::camera::{
@@ -53,10 +53,8 @@ pub fn render_model_image(
     algo: Algo,
     format: Format,
 ) -> Result<Image, SimError> {
-    match (algo, format) {
-        (algo, Format::Q16_16) => model_image::<Q16_16>(model, view, width, height, algo),
-        (algo, Format::F32) => model_image::<f32>(model, view, width, height, algo),
-    }
+    let cull = Config::model(width, height).cull;
+    render_model_culled(model, view, (width, height), algo, format, cull).map(|(image, _)| image)
 }
 
 /// Measures what `model` needs from `view` at this size in format `N`.
@@ -117,18 +115,39 @@ fn model_image<N: Scalar + Send + Sync>(
     width: u16,
     height: u16,
     algo: Algo,
-) -> Result<Image, SimError> {
+    cull: Cull,
+) -> Result<(Image, Requirements), SimError> {
     with_scene::<N, _>(model, view, width, height, |scene, cfg| {
+        let cfg = &Config { cull, ..*cfg };
         let req = measure(model, scene, cfg)?;
-        draw(
+        let image = draw(
             algo,
             scene,
             cfg,
             &req,
             || structure(scene),
             |e| blame(model, e),
-        )
+        )?;
+        Ok((image, req))
     })?
+}
+
+/// [`render_model_image`] with culling `cull` (the window's toggle; model mode culls back
+/// faces), also returning what the view measured. Renderers are sized to the model as
+/// [`render_model_image`]'s are, so any model draws (the window's fixed renderers fall back
+/// to this for a model beyond them).
+pub fn render_model_culled(
+    model: &LoadedModel,
+    view: &View,
+    (width, height): (u16, u16),
+    algo: Algo,
+    format: Format,
+    cull: Cull,
+) -> Result<(Image, Requirements), SimError> {
+    match format {
+        Format::Q16_16 => model_image::<Q16_16>(model, view, width, height, algo, cull),
+        Format::F32 => model_image::<f32>(model, view, width, height, algo, cull),
+    }
 }
 
 /// The scene's structure: one object whose mesh is a closed convex solid?
