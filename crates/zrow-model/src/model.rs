@@ -53,7 +53,7 @@ pub const MAX_VERTICES: usize = off::MAX_VERTICES;
 
 /// Largest file [`load`] (and the `zrow-sim` commands) read: 256 MiB. That is about seven
 /// million triangles in OFF; memory while drawing grows with the file, about nine times its size
-/// (the README's scale table).
+/// (`bash scripts/host-scale.sh` measures it by model size).
 pub const MAX_FILE_BYTES: u64 = 256 << 20;
 
 /// Reads an input file whole, after checking that it is a regular file of at most
