@@ -64,8 +64,12 @@ usage:
                   scan-line capacities measured over all orientations at that size and
                   distance, and prints the report (changes made, quantisation error, RAM)
   --name NAME     the model's name in the file (default: the model's file stem)
-  --checks N      random extra orientations that check the sampled capacities (default 10000)
+  --checks N      random extra orientations that check the sampled capacities (default 10000,
+                  at most 1000000)
   --strict        refuse to split or triangulate faces, and non-manifold models: an error
+
+Input files must be regular files of at most 256 MiB (a device, FIFO or directory is refused
+before it is read). --out is checked before any work and replaced only once fully written.
 
 On bad input it prints one line `error: FILE:LINE: message` and exits non-zero.";
 
