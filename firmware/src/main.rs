@@ -21,7 +21,6 @@ use defmt_rtt as _;
 use dma_rows::{DmaRows, ROW_BYTES};
 use embedded_hal_bus::spi::ExclusiveDevice;
 use mipidsi::{interface::SpiInterface, models::ST7789, options::ColorInversion, Builder};
-use panic_probe as _;
 use static_cell::ConstStaticCell;
 use stm32f4xx_hal::{
     dma::StreamsTuple,
@@ -46,6 +45,19 @@ static ROW_B: ConstStaticCell<[u8; ROW_BYTES]> = ConstStaticCell::new([0; ROW_BY
 
 /// Frames per demo scene (the simulator's demos, `zrow_scenes::DEMOS`).
 const FRAMES_PER_SCENE: u32 = 256;
+
+/// A panic (none is expected: the core reports bad input as errors) logs where it happened
+/// and stops on a fault. Only the location is logged: the message would pull in `core::fmt`,
+/// several kilobytes of flash.
+#[panic_handler]
+fn panic(info: &core::panic::PanicInfo) -> ! {
+    cortex_m::interrupt::disable();
+    match info.location() {
+        Some(at) => defmt::error!("panic at {=str}:{=u32}", at.file(), at.line()),
+        None => defmt::error!("panic"),
+    }
+    cortex_m::asm::udf()
+}
 
 #[entry]
 fn main() -> ! {
@@ -130,7 +142,7 @@ fn main() -> ! {
                 SYSCLK_HZ / cycles.max(1)
             ),
             Some(Ok(_)) => {}
-            Some(Err(e)) => defmt::error!("{=str}: {}", name, defmt::Debug2Format(&e)),
+            Some(Err(e)) => defmt::error!("{=str}: {}", name, e),
             None => defmt::error!("no scene {=str}", name),
         }
         frame = frame.wrapping_add(1);
