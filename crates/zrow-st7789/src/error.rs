@@ -41,6 +41,14 @@ pub enum StreamError {
     /// The window is empty or does not fit the panel's 240 × 320 RAM with its offsets: shrink
     /// it or fix the offsets (see [`Window`](crate::Window)).
     BadWindow,
+    /// [`CoherentRows`](crate::CoherentRows) keeps `capacity` row signatures but the window
+    /// is `height` rows tall: make its parameter `H` at least the height.
+    TooFewSignatures {
+        /// The window's height.
+        height: u16,
+        /// Signatures kept (`H`).
+        capacity: u32,
+    },
 }
 
 /// What went wrong on the way to the panel: `SE` is the SPI device's error, `PE` the DC pin's.
@@ -78,6 +86,12 @@ impl fmt::Display for StreamError {
                 write!(f, "line buffer of {capacity} bytes, a row needs {needed}")
             }
             StreamError::BadWindow => f.write_str("window empty or outside the 240x320 panel"),
+            StreamError::TooFewSignatures { height, capacity } => {
+                write!(
+                    f,
+                    "{capacity} row signatures for a window {height} rows tall"
+                )
+            }
         }
     }
 }

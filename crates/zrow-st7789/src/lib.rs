@@ -42,6 +42,9 @@
 //!   with another driver (mipidsi) instead and use only the row sink.
 //! - [`St7789Rows`]: the [`zrow::RowSink`] for blocking SPI, with its [`Window`] (size and
 //!   offsets in panel RAM) and typed errors ([`Error`], [`StreamError`]).
+//! - [`coherence`]: frame coherence on the wire: [`CoherentRows`] sends only the rows that
+//!   changed since the last frame (a 32-bit signature per row), [`Coherence`] the same
+//!   decision for DMA firmware.
 //! - [`encode_row`]: the row encoding alone, for firmware that double-buffers rows and sends
 //!   them by DMA (encode row *k + 1* while row *k* is on the wire).
 //! - `model` and `mock` (feature `model`, needs `std`): an ST7789 model that decodes the
@@ -54,6 +57,7 @@
 #[cfg(feature = "std")]
 extern crate std;
 
+pub mod coherence;
 pub mod command;
 pub mod error;
 #[cfg(feature = "model")]
@@ -62,6 +66,7 @@ pub mod mock;
 pub mod model;
 pub mod rows;
 
+pub use coherence::{Coherence, CoherentRows, RowAction};
 pub use command::{init, init_sequence, send_command, InitStep, INIT_SEQUENCE};
 pub use error::{Error, StreamError};
 pub use rows::{encode_row, line_bytes, St7789Rows, Window, PANEL_HEIGHT, PANEL_WIDTH};

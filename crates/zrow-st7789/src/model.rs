@@ -104,6 +104,7 @@ pub struct St7789Model {
     sleep_toggle_at_ns: u64,
     commands: Vec<u8>,
     errors: Vec<ModelError>,
+    wire_bytes: u64,
 }
 
 impl Default for St7789Model {
@@ -152,6 +153,7 @@ impl St7789Model {
             sleep_toggle_at_ns: 0,
             commands: Vec::new(),
             errors: Vec::new(),
+            wire_bytes: 0,
         };
         m.reset_registers();
         m
@@ -170,6 +172,7 @@ impl St7789Model {
 
     /// Takes one SPI write: `bytes` sent while DC was high (`dc_high`) or low.
     pub fn feed(&mut self, dc_high: bool, bytes: &[u8]) {
+        self.wire_bytes = self.wire_bytes.saturating_add(bytes.len() as u64);
         if dc_high {
             self.data(bytes);
         } else {
@@ -177,6 +180,12 @@ impl St7789Model {
                 self.begin_command(b);
             }
         }
+    }
+
+    /// Bytes received so far, commands, parameters and pixels together: what crossed the
+    /// wire (each takes 8 SPI clocks).
+    pub fn wire_bytes(&self) -> u64 {
+        self.wire_bytes
     }
 
     /// Lets `ns` nanoseconds pass (the mock delay calls this).

@@ -2,7 +2,7 @@
 //! big-endian RGB565 bytes; and [`encode_row`], the same encoding as a pure function for
 //! firmware that sends rows by DMA from two buffers of its own.
 
-use crate::command::{self, CASET, RAMWR, RASET};
+use crate::command;
 use crate::{Error, StreamError};
 use embedded_graphics_core::pixelcolor::{IntoStorage, Rgb565};
 use embedded_hal::delay::DelayNs;
@@ -101,6 +101,24 @@ impl Window {
     pub const fn raset(&self) -> [u8; 4] {
         span(self.y_offset, self.height)
     }
+
+    /// `RASET` parameters from the window's row `row` (the last row if `row` is past it) to
+    /// its last row: what a sender of changed rows only sets before a run
+    /// ([`crate::coherence`]).
+    ///
+    /// ```
+    /// use zrow_st7789::Window;
+    /// let w = Window::new(240, 240).with_offset(0, 80);
+    /// assert_eq!(w.raset_from(10), [0, 90, 1, 63]); // RAM rows 90..=319
+    /// ```
+    pub const fn raset_from(&self, row: u16) -> [u8; 4] {
+        let row = if row < self.height {
+            row
+        } else {
+            self.height.saturating_sub(1)
+        };
+        span(self.y_offset.wrapping_add(row), self.height - row)
+    }
 }
 
 /// Start and inclusive end of `len` addresses from `start`, as the ST7789 takes them.
@@ -144,12 +162,12 @@ pub fn encode_row(row: &[Rgb565], out: &mut [u8]) -> usize {
 /// sent as one SPI write. After the last row the frame is closed; the next frame starts
 /// with `begin_frame` again. After any error, start again with `begin_frame`.
 pub struct St7789Rows<SPI, DC, const B: usize> {
-    spi: SPI,
-    dc: DC,
-    window: Window,
+    pub(crate) spi: SPI,
+    pub(crate) dc: DC,
+    pub(crate) window: Window,
     /// The row due next, `None` outside a frame.
-    next_row: Option<u16>,
-    line: [u8; B],
+    pub(crate) next_row: Option<u16>,
+    pub(crate) line: [u8; B],
 }
 
 impl<SPI, DC, const B: usize> St7789Rows<SPI, DC, B> {
@@ -204,9 +222,9 @@ impl<SPI: SpiDevice, DC: OutputPin, const B: usize> St7789Rows<SPI, DC, B> {
     pub fn begin_frame(&mut self) -> Result<(), Error<SPI::Error, DC::Error>> {
         self.next_row = None;
         let (spi, dc) = (&mut self.spi, &mut self.dc);
-        command::send_command(spi, dc, CASET, &self.window.caset())?;
-        command::send_command(spi, dc, RASET, &self.window.raset())?;
-        command::send_command(spi, dc, RAMWR, &[])?;
+        crate::coherence::open_run(&self.window, 0, true, |c, p| {
+            command::send_command(spi, dc, c, p)
+        })?;
         self.next_row = Some(0);
         Ok(())
     }
@@ -218,27 +236,40 @@ impl<N, SPI: SpiDevice, DC: OutputPin, const B: usize> RowSink<N> for St7789Rows
     /// Checks the row's place and length, encodes it big-endian into the line buffer and
     /// sends it with DC high in one SPI write.
     fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), Self::Error> {
+        let n = self.take_row(row)?;
+        self.dc.set_high().map_err(Error::Dc)?;
+        self.spi.write(&self.line[..n]).map_err(Error::Spi)?;
+        self.row_done();
+        Ok(())
+    }
+}
+
+impl<SPI, DC, const B: usize> St7789Rows<SPI, DC, B> {
+    /// Checks that `row` is the one due and as wide as the window, encodes it into the line
+    /// buffer: the bytes to send are `line[..n]`. [`Self::row_done`] moves on once it is sent.
+    pub(crate) fn take_row<N>(&mut self, row: &Row<'_, N>) -> Result<usize, StreamError> {
         let expected = self.next_row.ok_or(StreamError::NoFrame)?;
         if row.y != expected {
             return Err(StreamError::OutOfOrder {
                 expected,
                 got: row.y,
-            }
-            .into());
+            });
         }
         let width = self.window.width;
         if row.intensity.len() != width as usize {
             return Err(StreamError::WrongLength {
                 expected: width,
                 got: u32::try_from(row.intensity.len()).unwrap_or(u32::MAX),
-            }
-            .into());
+            });
         }
         // `new` checked B >= 2 * width, so the whole row fits.
-        let n = encode_row(row.intensity, &mut self.line);
-        self.dc.set_high().map_err(Error::Dc)?;
-        self.spi.write(&self.line[..n]).map_err(Error::Spi)?;
-        self.next_row = (expected + 1 < self.window.height).then_some(expected + 1);
-        Ok(())
+        Ok(encode_row(row.intensity, &mut self.line))
+    }
+
+    /// The row due has been dealt with: the next one is due (none after the window's last).
+    pub(crate) fn row_done(&mut self) {
+        self.next_row = self
+            .next_row
+            .and_then(|r| (r + 1 < self.window.height).then_some(r + 1));
     }
 }
