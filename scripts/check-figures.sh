@@ -4,8 +4,8 @@
 # generated, not typed). CI runs it after the firmware size check and the emulated bench
 # (it reads emu/target/bench-m4.txt, which `bash emu/run.sh m4` writes).
 #
-# Checked: the firmware's flash and static RAM ("On the board"), the converted torus's
-# scan-line RAM ("Bring your own model"), the emulated cube counts of cull-only and the
+# Checked: the firmware's flash and static RAM and the bytes per frame on the wire ("On the
+# board"), the converted torus's scan-line RAM ("Bring your own model"), the emulated cube counts of cull-only and the
 # scan-line method ("Methods"), and the scan-line RAM column of the methods table against
 # docs/methods/foley.md (which its own command writes).
 set -euo pipefail
@@ -32,6 +32,15 @@ ram="$(echo "$out" | sed -E 's/.*static RAM ([0-9]+) bytes.*/\1/')"
 # Flash in KB to a tenth (its exact bytes move with the checkout's path, in panic messages).
 expect "firmware flash" "at this commit $(awk -v f="$flash" 'BEGIN { printf "%.1f", f / 1024 }') KB of"
 expect "firmware static RAM" "$(thousands "$ram") bytes of static RAM"
+
+# Bytes on the wire per demo frame, whole and changed rows only (the README's table, as the
+# example prints it).
+while IFS= read -r line; do
+  case "$line" in
+    "| interlocked"* | "| cube"* | "| mesh1k"*)
+      expect "wire bytes, $(echo "$line" | cut -d'|' -f2 | xargs)" "$line" ;;
+  esac
+done < <(cargo run --release -q -p zrow-st7789 --example wire)
 
 # The converted torus's scan-line RAM (the README's convert command).
 tmp="$(mktemp -d)"

@@ -1,14 +1,18 @@
 //! Rows to the ST7789 by DMA, double-buffered: while the DMA engine sends row y from one
 //! buffer, the renderer computes row y + 1 and this sink encodes it into the other.
 //!
-//! Each frame begins with the window (CASET, RASET: the whole panel) and RAMWR, which puts the
-//! panel's address counter at the window's top-left corner; then exactly `width × height`
-//! pixels follow as big-endian RGB565, one DMA transfer a row.
+//! Only the rows that changed since the last frame are sent (frame coherence on the wire,
+//! `zrow_st7789::coherence`): the panel keeps its own memory. Each row's 32-bit signature is
+//! compared with the one last sent; an unchanged row is skipped, a changed row after a gap
+//! first gets the window (CASET once per frame, RASET from this row to the bottom) and RAMWR,
+//! which puts the panel's address counter on it, and a changed row right after a sent one
+//! simply follows. The first frame, and the frame after a DMA error, go whole.
 //!
-//! The HAL's DMA `Tx` half keeps the SPI for good, so those few command bytes per frame are
-//! written straight to SPI1's data register, DC low for a command and high for its
-//! parameters, once the DMA stream and the SPI are idle. The bytes and commands are `zrow-st7789`'s, whose panel model checks this protocol
-//! (`crates/zrow-st7789/tests/stream.rs`).
+//! The HAL's DMA `Tx` half keeps the SPI for good, so those few command bytes are written
+//! straight to SPI1's data register, DC low for a command and high for its parameters, once
+//! the DMA stream and the SPI are idle. The bytes and commands are `zrow-st7789`'s, whose
+//! panel model checks this protocol (`crates/zrow-st7789/tests/coherence.rs` drives a sender
+//! built like this one over 200 frames of each demo scene).
 
 use core::convert::Infallible;
 use cortex_m::peripheral::DWT;
@@ -17,7 +21,7 @@ use stm32f4xx_hal::dma::{config::DmaConfig, MemoryToPeripheral, Stream3, Transfe
 use stm32f4xx_hal::pac::{self, DMA2, SPI1};
 use stm32f4xx_hal::spi::Tx;
 use zrow::{Row, RowSink};
-use zrow_st7789::command::{CASET, RAMWR, RASET};
+use zrow_st7789::coherence::{open_run, Coherence, RowAction};
 use zrow_st7789::{encode_row, Window};
 
 /// Bytes in one row (240 RGB565 pixels).
@@ -35,10 +39,17 @@ enum State {
     Switching,
 }
 
+/// The panel window the demo draws into.
+const WINDOW: Window = Window::new(240, 240);
+
 /// The DMA row sink.
 pub struct DmaRows<DC> {
     state: State,
     dc: DC,
+    /// The signatures of the rows on the panel (960 bytes).
+    coherence: Coherence<240>,
+    /// Rows sent in the current frame (the others were already on the panel).
+    pub rows_sent: u32,
     /// Cycles spent waiting for the DMA engine or the SPI since the last reset: the part of
     /// sending that rendering did not hide.
     pub wait_cycles: u32,
@@ -53,17 +64,20 @@ impl<DC: OutputPin> DmaRows<DC> {
         DmaRows {
             state: State::Idle(stream, tx, a, b),
             dc,
+            coherence: Coherence::new(),
+            rows_sent: 0,
             wait_cycles: 0,
             dropped: 0,
         }
     }
 
-    /// Sends the window and RAMWR; the SPI must be idle (it is: callers wait first).
-    fn begin_frame(&mut self) {
-        let window = Window::new(240, 240);
-        self.command(CASET, &window.caset());
-        self.command(RASET, &window.raset());
-        self.command(RAMWR, &[]);
+    /// Opens a run of rows at row `y` (see `open_run`); the SPI must be idle (it is: callers
+    /// wait first).
+    fn open(&mut self, y: u16, caset: bool) {
+        let _ = open_run(&WINDOW, y, caset, |c, p| -> Result<(), Infallible> {
+            self.command(c, p);
+            Ok(())
+        });
     }
 
     /// One command byte with DC low, then its parameters with DC high, each shifted out
@@ -101,43 +115,63 @@ impl<N, DC: OutputPin> RowSink<N> for DmaRows<DC> {
     type Error = Infallible;
 
     fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), Infallible> {
+        if row.y == 0 {
+            self.rows_sent = 0;
+        }
         let mut waited = 0u32;
         self.state = match core::mem::replace(&mut self.state, State::Switching) {
             State::Idle(stream, tx, a, b) => {
-                encode_row(row.intensity, a);
-                wait_spi_idle();
-                self.begin_frame();
-                let mut t = Transfer::init_memory_to_peripheral(
-                    stream,
-                    tx,
-                    a,
-                    None,
-                    DmaConfig::default()
-                        .memory_increment(true)
-                        .fifo_enable(true),
-                );
-                t.start(|_| {});
-                State::Running(t, b)
+                let n = encode_row(row.intensity, a);
+                match self.coherence.row(row.y, &a[..n]) {
+                    RowAction::Skip => State::Idle(stream, tx, a, b),
+                    // Nothing is open before the first transfer: always a new run.
+                    RowAction::Continue | RowAction::Open { .. } => {
+                        wait_spi_idle();
+                        self.open(row.y, true);
+                        let mut t = Transfer::init_memory_to_peripheral(
+                            stream,
+                            tx,
+                            a,
+                            None,
+                            DmaConfig::default()
+                                .memory_increment(true)
+                                .fifo_enable(true),
+                        );
+                        t.start(|_| {});
+                        self.rows_sent += 1;
+                        State::Running(t, b)
+                    }
+                }
             }
             State::Running(mut t, spare) => {
-                encode_row(row.intensity, spare);
-                let t0 = DWT::cycle_count();
-                t.wait(); // the previous row has left memory
-                if row.y == 0 {
-                    wait_spi_idle(); // ... and the SPI
-                    self.begin_frame();
-                }
-                waited = DWT::cycle_count().wrapping_sub(t0);
-                match t.next_transfer(spare) {
-                    Ok((old, _)) => State::Running(t, old),
-                    Err(e) => {
-                        self.dropped += 1;
-                        let buf = match e {
-                            stm32f4xx_hal::dma::DMAError::NotReady(b)
-                            | stm32f4xx_hal::dma::DMAError::SmallBuffer(b)
-                            | stm32f4xx_hal::dma::DMAError::Overrun(b) => b,
-                        };
-                        State::Running(t, buf)
+                let n = encode_row(row.intensity, spare);
+                let action = self.coherence.row(row.y, &spare[..n]);
+                if action == RowAction::Skip {
+                    State::Running(t, spare)
+                } else {
+                    let t0 = DWT::cycle_count();
+                    t.wait(); // the previous row has left memory
+                    if let RowAction::Open { caset } = action {
+                        wait_spi_idle(); // ... and the SPI
+                        self.open(row.y, caset);
+                    }
+                    waited = DWT::cycle_count().wrapping_sub(t0);
+                    match t.next_transfer(spare) {
+                        Ok((old, _)) => {
+                            self.rows_sent += 1;
+                            State::Running(t, old)
+                        }
+                        Err(e) => {
+                            // The panel misses this row: send the next frame whole.
+                            self.dropped += 1;
+                            self.coherence.forget();
+                            let buf = match e {
+                                stm32f4xx_hal::dma::DMAError::NotReady(b)
+                                | stm32f4xx_hal::dma::DMAError::SmallBuffer(b)
+                                | stm32f4xx_hal::dma::DMAError::Overrun(b) => b,
+                            };
+                            State::Running(t, buf)
+                        }
                     }
                 }
             }

@@ -1,13 +1,14 @@
 //! zrow on an STM32F411 "Black Pill" driving a 240×240 ST7789 over SPI1.
 //!
-//! The panel is initialised with mipidsi; after that the firmware streams rows itself: each
-//! frame sets the window once and sends RAMWR, and every row leaves by DMA from one of two
-//! buffers while the renderer computes the next row into the other (see `dma_rows`).
+//! The panel is initialised with mipidsi; after that the firmware streams rows itself: a row
+//! leaves by DMA from one of two buffers while the renderer computes the next row into the
+//! other, and only the rows that changed since the last frame are sent, consecutive ones under
+//! one window (see `dma_rows`).
 //!
 //! The demo shows the simulator's scenes (`zrow_scenes::DEMOS`, const data in flash): two
 //! linked rings pierced by a cube, the cube, and the 1,000-triangle torus, turning, in Q16.16. Every 32 frames it logs, through
 //! defmt, the cycles of the last frame (DWT CYCCNT at 100 MHz): render, SPI wait (sending that
-//! rendering did not hide), and frames per second.
+//! rendering did not hide), the rows sent, and frames per second.
 //!
 //! Wiring (README): SCK PA5, MOSI PA7, CS PA4, DC PA3, RST PA2, backlight PA1.
 #![no_std]
@@ -134,11 +135,12 @@ fn main() -> ! {
         let cycles = DWT::cycle_count().wrapping_sub(t0);
         match result {
             Some(Ok(stats)) if frame.is_multiple_of(32) => defmt::info!(
-                "{=str}: {} polygons, render {} cyc, SPI wait {} cyc, {} fps",
+                "{=str}: {} polygons, render {} cyc, SPI wait {} cyc, {} of 240 rows sent, {} fps",
                 name,
                 stats.polygons,
                 cycles.wrapping_sub(rows.wait_cycles),
                 rows.wait_cycles,
+                rows.rows_sent,
                 SYSCLK_HZ / cycles.max(1)
             ),
             Some(Ok(_)) => {}

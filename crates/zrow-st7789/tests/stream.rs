@@ -1,6 +1,7 @@
-//! The firmware's DMA path protocol, checked against the panel model: the init table, then per
-//! frame the window (CASET, RASET), RAMWR and `height` rows of `encode_row` bytes (each row one
-//! data write, as one DMA transfer sends it). Two consecutive frames of a turning standard
+//! The whole-frame protocol of a DMA sender, checked against the panel model: the init table,
+//! then per frame the window (CASET, RASET), RAMWR and `height` rows of `encode_row` bytes
+//! (each row one data write, as one DMA transfer sends it). The firmware sends whole frames
+//! like this only at first and after an error; `coherence.rs` checks its changed-rows sending. Two consecutive frames of a turning standard
 //! scene must each equal the core's render bit for bit, and the model must see no protocol
 //! error.
 
