@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # CI's check of the emulated bench: every frame the Cortex-M renders under QEMU must hash the
 # same as the host's render of the same scene, format and method or preset (same core,
-# different instruction set; EXTREMES item 22).
+# different instruction set; docs/extremes.md item 22).
 #
 # usage: emu/check.sh [m4|m3]      (default m4)
 #

@@ -1,4 +1,4 @@
-//! The command line (GUIDE §2):
+//! The command line (the render command of `docs/conventions.md`):
 //!
 //! ```text
 //! zrow-sim render --screen SCENE.off --size 240x240 --algo scanline --out OUT.png

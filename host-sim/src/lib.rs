@@ -1,7 +1,7 @@
 //! # zrow-sim — the zrow simulator on the host
 //!
 //! Renders zrow scenes without the hardware, for tests, golden images and looking at the
-//! result. The command (GUIDE §2):
+//! result. The command (`docs/conventions.md`):
 //!
 //! ```text
 //! cargo run --release -p zrow-sim -- render --screen SCENE.off --size 240x240 --algo scanline --out OUT.png

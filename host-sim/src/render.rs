@@ -61,7 +61,7 @@ pub type HostOrdered<N> = zrow::ordered::Ordered<N, HOST_WIDTH, HOST_POLYGONS, H
 pub type HostBsp<N> =
     zrow::bsp::Bsp<N, HOST_WIDTH, HOST_POLYGONS, HOST_EDGES, HOST_PIECES, HOST_BSP_DEPTH>;
 
-/// A hidden-surface method, by its `--algo` name (GUIDE §2).
+/// A hidden-surface method, by its `--algo` name (`docs/conventions.md`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Algo {
     /// The scan-line method (`zrow::Scanline`).

@@ -46,7 +46,7 @@ fn check(scene_path: &Path, algo: Algo, format: Format, bless: bool) -> Result<(
         .to_string_lossy()
         .into_owned();
     // One reference per scene and format for every method: exact methods draw the same
-    // picture (GUIDE §4.2). Only the scan-line method blesses.
+    // picture. Only the scan-line method blesses.
     let tag = format.name();
     let reference = golden_dir().join(format!("{stem}.{tag}.png"));
     let actual_path = golden_dir().join(format!("{stem}.{tag}.{}.actual.png", algo.name()));
@@ -86,7 +86,7 @@ fn golden_frames() {
     );
 }
 
-/// The picture the seed asks about: at seed 002's point (3, 1) — pixel (90, 30) after the ×30
+/// The picture the example asks about: at its point (3, 1) — pixel (90, 30) after the ×30
 /// scale — both triangles are present and s1 (red) is in front; below s1, s2 (green) shows.
 #[test]
 fn seed002_red_in_front_of_green() {

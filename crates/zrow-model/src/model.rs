@@ -9,7 +9,7 @@
 //! - **STL**: every triangle in [`DEFAULT_RGB`]. Binary and ASCII are told apart by the size
 //!   the binary header promises, so a binary file whose header happens to start with `solid`
 //!   still loads.
-//! - **OFF** (GUIDE §2): face colours kept (white where a face has none).
+//! - **OFF** (the scene-file contract, `docs/conventions.md`): face colours kept (white where a face has none).
 //!
 //! **Normalised**: in `f32` (computed in `f64`), before any conversion to a renderer's number
 //! format, the model is centred on the centre of its bounding box and scaled so that the box's

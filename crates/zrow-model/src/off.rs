@@ -1,4 +1,4 @@
-//! The OFF scene parser (GUIDE §2): Geomview's Object File Format with one colour per face.
+//! The OFF scene parser (the scene-file contract in `docs/conventions.md`): Geomview's Object File Format with one colour per face.
 //!
 //! ```text
 //! OFF                      # header (the counts may follow on the same line)

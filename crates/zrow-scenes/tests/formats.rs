@@ -1,6 +1,6 @@
 //! The scenes in every number format: the Q24.8 arrays are the f32 positions rounded to the
 //! nearest 1/256, and every scene renders in Q24.8, covering what Q16.16 covers wherever the
-//! positions are on the 1/256 grid (coverage never depends on the format, GUIDE §1).
+//! positions are on the 1/256 grid (coverage never depends on the format, `docs/conventions.md`).
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use zrow::{FrameBuffer, Scalar, Scanline, Vec3, Q16_16, Q24_8};

@@ -15,7 +15,7 @@
 //!   the dEQP three-state rule (missing FULL pixels, extra NONE pixels), pixels showing the
 //!   wrong surface, depth error in LSB of the preset's depth format, intensity error in LSB of
 //!   the Rgb565 channels; plus per preset the pixels drawn twice or missed by a watertight fan
-//!   (EXTREMES item 4) and the depth-resolution threshold (item 17) beside its theory.
+//!   (`docs/extremes.md` item 4) and the depth-resolution threshold (item 17) beside its theory.
 //!
 //! It writes `OUT/presets.md` (the Pareto table and the details) and `OUT/presets.png` (cost
 //! against error, one point per preset) and prints the table. Options: `--out DIR`,
@@ -289,7 +289,7 @@ fn report(rows: &[Row], emu: &std::path::Path, quick: bool) -> String {
             );
         }
     }
-    let _ = writeln!(s, "\n## Depth resolution (EXTREMES item 17)\n");
+    let _ = writeln!(s, "\n## Depth resolution (docs/extremes.md, item 17)\n");
     let _ = writeln!(
         s,
         "Two parallel squares facing the eye at w = {} and {} + Δ (the far one first in the scene, \

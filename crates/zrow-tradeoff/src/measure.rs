@@ -145,7 +145,7 @@ impl Build for FanTriangle {
     }
 }
 
-/// Watertightness (EXTREMES item 4): a fan of `n` triangles round a centre, perimeter steps
+/// Watertightness (`docs/extremes.md` item 4): a fan of `n` triangles round a centre, perimeter steps
 /// random, each triangle drawn alone. Returns (pixels drawn twice or more, FULL pixels of the
 /// fan not drawn, NONE pixels drawn).
 pub fn fan(p: &Preset, n: usize, seed: u64) -> Result<(u32, u32, u32), String> {
@@ -259,7 +259,7 @@ impl Build for Planes {
     }
 }
 
-/// The depth-resolution threshold (EXTREMES item 17) of a preset.
+/// The depth-resolution threshold (`docs/extremes.md` item 17) of a preset.
 pub struct Threshold {
     /// Δw from the format's depth LSB and the mapping's slope at w = [`PLANE_W`].
     pub theory: f64,

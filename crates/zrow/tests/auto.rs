@@ -1,4 +1,4 @@
-//! The cheap exact methods `auto` chooses from the scene's structure (issue 7):
+//! The cheap exact methods `auto` chooses from the scene's structure:
 //!
 //! - back-face culling alone ([`CullOnly`]) for one closed convex solid — [`closed_convex`]
 //!   says which meshes are one, and on them the picture equals the scan-line method's;

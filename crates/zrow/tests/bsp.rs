@@ -1,4 +1,4 @@
-//! The BSP tree equals the exact reference (EXTREMES item 20), culls back faces on the walk,
+//! The BSP tree equals the exact reference (`docs/extremes.md` item 20), culls back faces on the walk,
 //! and bounds its depth.
 
 mod common;

@@ -1,4 +1,4 @@
-//! Depth-sort equals the exact reference (EXTREMES item 20).
+//! Depth-sort equals the exact reference (`docs/extremes.md` item 20).
 
 mod common;
 use common::*;

@@ -1,4 +1,4 @@
-//! ../shared/EXTREMES.md as tests. Each test names its item; every item is a generic function
+//! The numerical extremes of `docs/extremes.md` as tests. Each test names its item; every item is a generic function
 //! over `N: Scalar`, run through the one format list [`for_formats!`], and — where it is about
 //! coverage or clipping — on every method ([`all_methods`]: scan-line, z-buffer, tiled 16-bit
 //! z-buffer, depth-sort, Warnock, BSP, A-buffer, and cull-only and ordered, whose preconditions
@@ -10,7 +10,7 @@
 //!   mesh, 8 vertex order and winding, 9 translation, 10 repeatability, 11 zero area, 13
 //!   (screen space: coordinates at the format's limits), 14 near plane, 21 debug vs release
 //!   (frame hash; scan-line only, the blessed hash fixes its formats), 23 bad input
-//!   (scan-line's exact errors), and depth ties (GUIDE §1);
+//!   (scan-line's exact errors), and depth ties (`docs/conventions.md`);
 //! - tests/extremes_coverage.rs: 12 needles across the guard band, 13 (clip space: huge
 //!   objects under a perspective camera, and Q16.16's typed refusal), 15 (bounding boxes
 //!   either side of 2^k pixels, and the one width switch the core has: `div_round`'s 64/128-bit
@@ -929,7 +929,7 @@ fn e23_bad_input_is_a_typed_error_before_any_row() {
     assert_eq!(cap.rows_received, 0);
 }
 
-// Depth ties (GUIDE §1): the polygon that comes first in the scene wins, everywhere. Exact
+// Depth ties (`docs/conventions.md`): the polygon that comes first in the scene wins, everywhere. Exact
 // ties arise from the same polygon drawn twice (any vertex order), from constant-depth
 // polygons, and — in Q16.16, whose planes are rounded once from exact integers at a common
 // reference pixel — from any two polygons on the same plane.

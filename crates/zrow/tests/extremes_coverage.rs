@@ -1,4 +1,4 @@
-//! ../shared/EXTREMES.md items 12, 13 (clip space) and 15, on every method in every format
+//! `docs/extremes.md` items 12, 13 (clip space) and 15, on every method in every format
 //! (the format list is [`for_formats!`]; see tests/extremes.rs for where the other items are).
 //!
 //! - 12: needles one sub-pixel wide spanning the whole guard band at all angles match the exact

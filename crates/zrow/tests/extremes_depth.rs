@@ -1,4 +1,4 @@
-//! ../shared/EXTREMES.md items 16–20 (depth and transforms), on every method in every format
+//! `docs/extremes.md` items 16–20 (depth and transforms), on every method in every format
 //! (the format list is [`for_formats!`]; see tests/extremes.rs for where the other items are).
 //! `cargo test -p zrow --test extremes_depth -- --nocapture` prints the measured figures.
 //!

@@ -1,5 +1,5 @@
 //! Meshes as a model converter emits them for flash: `u8` face indices and precomputed face
-//! normals (issue 7).
+//! normals.
 //!
 //! - A mesh with `u8` indices renders bit for bit like the same mesh with `u16` indices
 //!   (colour and depth, Q16.16 and f32, model and screen mode).

@@ -1,4 +1,4 @@
-//! ../shared/EXTREMES.md item 23 for every method, and property tests in the fuzzer's spirit
+//! `docs/extremes.md` item 23 for every method, and property tests in the fuzzer's spirit
 //! (see tests/extremes.rs for where the other items are; the format list is
 //! [`for_formats!`]).
 //!

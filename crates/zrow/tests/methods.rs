@@ -1,5 +1,5 @@
-//! Every hidden-surface method behind [`Renderer`], held to one standard (GUIDE §4.2,
-//! EXTREMES items 20 and 23):
+//! Every hidden-surface method behind [`Renderer`], held to one standard (every exact
+//! method gives the reference's picture; `docs/extremes.md` items 20 and 23):
 //!
 //! - on random, dense and cyclic-overlap scenes each exact method draws the exact reference's
 //!   picture, except where the reference itself calls a depth tie — in fixed point two planes

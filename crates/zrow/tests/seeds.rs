@@ -1,13 +1,15 @@
-//! The seeds' worked examples (../shared/seeds/), as tests.
+//! Small worked examples of the classic hidden-surface questions (which triangle is in front
+//! at a point and at what depth; which polygon a depth sort paints first; which cube faces are
+//! back faces), with the answers worked by hand, as tests.
 
 mod common;
 use common::*;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use zrow::{backface::is_back_face, Camera, Config, Face, Projection, Scalar, Vec3, Q16_16};
 
-/// Seed 002: s1 = (0,0,6),(6,0,0),(0,6,0), s2 = (2,0,6),(6,0,6),(4,4,0); at (3, 1) s1 is
+/// Two triangles: s1 = (0,0,6),(6,0,0),(0,6,0), s2 = (2,0,6),(6,0,6),(4,4,0); at (3, 1) s1 is
 /// visible with depth 2. Our samples are at pixel centres, so the scene moves by half a pixel
-/// to put pixel (3, 1)'s centre on the seed's point.
+/// to put pixel (3, 1)'s centre on the example's point.
 fn seed002<N: Scalar>() {
     let sh = |x: f32, y: f32, z: f32| [x + 0.5, y + 0.5, z];
     let p = Polys::new(vec![
@@ -18,7 +20,7 @@ fn seed002<N: Scalar>() {
     let cap = p.render::<N>(&cfg).unwrap();
     assert_eq!(index_of(cap.at(3, 1)), Some(0), "s1 visible at (3,1)");
     assert_eq!(cap.z(3, 1).to_f32(), 2.0, "depth 2 at (3,1)");
-    // The seed's walk: (0,6) is s1's apex, depth 0, but a bottom vertex owns no sample (top-left
+    // The hand-worked walk: (0,6) is s1's apex, depth 0, but a bottom vertex owns no sample (top-left
     // rule); (0,5) has depth 1 and the row y = 1 starts at depth 5.
     assert_eq!(index_of(cap.at(0, 6)), None);
     assert_eq!(cap.z(0, 5).to_f32(), 1.0);
@@ -41,7 +43,7 @@ fn seed002_s1_visible_at_3_1_with_depth_2_f32() {
     seed002::<f32>();
 }
 
-/// Seed 000, Example 6: P (100,100,50),(50,50,50),(150,50,50) and Q (40,80,60),(70,70,50),
+/// A depth-sort example: P (100,100,50),(50,50,50),(150,50,50) and Q (40,80,60),(70,70,50),
 /// (10,75,70): their boxes overlap in xy, their depths do not (P at 50, Q at 50..70), so "Q is
 /// painted first, followed by P". The scan-line picture must equal exactly that painting.
 /// (They only touch — Q's vertex (70,70) lies on P's edge — and where they touch, at depth 50
@@ -122,10 +124,10 @@ fn render_cube<N: Scalar>(camera: Camera<N>, size: u16) -> [usize; 6] {
     seen
 }
 
-/// Seed 004: the unit cube at the origin seen from (5, −1, 5): faces +x, −y and +z are
+/// Back faces: the unit cube at the origin seen from (5, −1, 5): faces +x, −y and +z are
 /// visible, the other three are back faces.
 fn cube_from_5_m1_5<N: Scalar>() {
-    // The seed's own table: V = (−5, 1, −5) against each normal.
+    // The hand-worked table: V = (−5, 1, −5) against each normal.
     let v = Vec3::<N>::from_f32([-5.0, 1.0, -5.0]).unwrap();
     let normals = [
         ([1., 0., 0.], false),
@@ -165,7 +167,7 @@ fn seed004_cube_from_5_m1_5_shows_px_my_pz() {
     cube_from_5_m1_5::<f32>();
 }
 
-/// Seed 004's second question: from (20, 40, 20) the visible faces are +x, +y, +z.
+/// The same cube from (20, 40, 20) the visible faces are +x, +y, +z.
 #[test]
 fn seed004_cube_from_20_40_20() {
     let v = Vec3::<f32>::new(-20.0, -40.0, -20.0);
@@ -174,7 +176,7 @@ fn seed004_cube_from_20_40_20() {
     assert!(!vis([-1., 0., 0.]) && !vis([0., -1., 0.]) && !vis([0., 0., -1.]));
 }
 
-/// Orthographic projection gives the seeds' "back face if C < 0" along the view axis.
+/// Orthographic projection gives the textbook "back face if C < 0" along the view axis.
 #[test]
 fn orthographic_cube_shows_one_face_head_on() {
     let camera = Camera::look_at(

@@ -101,7 +101,7 @@ fn ascii<N: Scalar>(cap: &Capture<N>) -> Vec<String> {
         .collect()
 }
 
-/// Seed 000 Example 7 (P, Q, R in screen space, z = depth), scaled by 8 in x and y so each
+/// A cyclic-overlap example (P, Q, R in screen space, z = depth), scaled by 8 in x and y so each
 /// triangle covers many pixels: which of the three obscures the other two?
 fn example7() -> Polys {
     let s = |x: f32, y: f32, z: f32| [8.0 * x, 8.0 * y, z];

@@ -46,7 +46,8 @@ impl Polys {
     }
 }
 
-/// Two of seed 002's triangles, scaled from the 6-pixel example to `w` × `h`.
+/// Two overlapping triangles (the 6-pixel example of `crates/zrow/tests/seeds.rs`), scaled
+/// to `w` × `h`.
 pub fn seed_pair(w: u16, h: u16) -> Polys {
     let (sx, sy) = (w as f32 / 6.0, h as f32 / 6.0);
     let p = |x: f32, y: f32, z: f32| [x * sx + 0.5, y * sy + 0.5, z];

@@ -355,7 +355,7 @@ pub fn render_model<N: Scalar>(
     cap
 }
 
-/// Scenes every method must draw as the reference does (GUIDE §4.2, EXTREMES item 20).
+/// Scenes every method must draw as the reference does (every exact method gives the reference's picture; `docs/extremes.md` item 20).
 pub mod scenes {
     use super::{Polys, Rng};
 
