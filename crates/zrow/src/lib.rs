@@ -48,7 +48,8 @@
 //!    subdivision (1969), the BSP tree (Fuchs, Kedem & Naylor 1980), the A-buffer (Carpenter
 //!    1984), culling or ordering alone.
 //! 6. [`sink`]: finished rows, top to bottom, to a [`RowSink`]: memory ([`FrameBuffer`]), any
-//!    embedded-graphics display ([`DrawTargetSink`]), an SPI panel.
+//!    embedded-graphics display ([`DrawTargetSink`]), an SPI panel; or the whole frame as an
+//!    embedded-graphics `Drawable` ([`Drawing`]).
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
@@ -120,7 +121,7 @@ pub use scanline::Scanline;
 pub use scene::{
     Camera, Face, Light, Mesh, MeshIndex, ModelScene, Object, Projection, Scene, ScreenScene,
 };
-pub use sink::{DrawTargetSink, FrameBuffer, Row, RowSink};
+pub use sink::{DrawTargetSink, Drawing, FrameBuffer, Row, RowSink};
 pub use zbuffer::ZBuffer;
 
 /// Includes a mesh a build script generated, so a converted model becomes `static` data in

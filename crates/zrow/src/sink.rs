@@ -1,10 +1,19 @@
-//! Where finished rows go: the [`RowSink`] trait and two sinks.
+//! Where finished rows go: the [`RowSink`] trait, two sinks, and [`Drawing`], a 3D scene as an
+//! embedded-graphics [`Drawable`].
 
+use crate::error::{Error, RenderError};
+use crate::method::{FrameStats, Renderer};
+use crate::number::Scalar;
+use crate::raster::Config;
+use crate::scene::Scene;
+use core::cell::RefCell;
 use core::convert::Infallible;
+use core::marker::PhantomData;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{Point, Size};
 use embedded_graphics_core::pixelcolor::Rgb565;
 use embedded_graphics_core::primitives::Rectangle;
+use embedded_graphics_core::Drawable;
 
 /// One finished row: its `intensity[x]` and `depth[x]`.
 #[derive(Clone, Copy, Debug)]
@@ -107,5 +116,86 @@ where
         );
         self.0
             .fill_contiguous(&area, pixels.iter().map(|&c| D::Color::from(c)))
+    }
+}
+
+/// A scene drawn by a renderer, as an embedded-graphics [`Drawable`]: for a program that just
+/// wants the scene in its display, like any other drawable.
+///
+/// `draw` renders the whole frame through a [`DrawTargetSink`] (clipped to the target) and
+/// returns the display's error as `Err`; a scene the renderer rejects (a capacity too small,
+/// bad input: [`Error`]) comes back as `Ok(Err(..))`, before any pixel is drawn. For a display
+/// in another colour format, draw into `display.color_converted()` (embedded-graphics).
+///
+/// ```
+/// use embedded_graphics::mock_display::MockDisplay;
+/// use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
+/// use embedded_graphics::prelude::*;
+/// use zrow::{Config, Drawing, Face, Mesh, Scanline, ScreenScene, Vec3, Q16_16};
+///
+/// let q = |x, y, z| Vec3::<Q16_16>::from_f32([x, y, z]).unwrap();
+/// let vertices = [q(2.0, 2.0, 1.0), q(30.0, 6.0, 1.0), q(6.0, 30.0, 1.0)];
+/// let faces = [Face::new(&[0, 1, 2], Rgb565::GREEN)];
+/// let scene = ScreenScene { mesh: Mesh::new(&vertices, &faces) };
+/// let mut renderer = Scanline::<Q16_16, 32, 4, 4, 4>::new();
+/// let drawing = Drawing::new(&mut renderer, &scene, Config::screen(32, 32));
+///
+/// let mut display = MockDisplay::<Rgb565>::new();
+/// let stats = drawing
+///     .draw(&mut display)
+///     .unwrap() // the display did not fail
+///     .unwrap(); // the renderer took the scene
+/// assert_eq!(stats.polygons, 1);
+/// assert_eq!(display.get_pixel(Point::new(8, 8)), Some(Rgb565::GREEN));
+///
+/// // A display in another colour format, through embedded-graphics' conversion.
+/// let mut rgb888 = MockDisplay::<Rgb888>::new();
+/// drawing.draw(&mut rgb888.color_converted()).unwrap().unwrap();
+/// assert_eq!(rgb888.get_pixel(Point::new(8, 8)), Some(Rgb888::GREEN));
+/// ```
+pub struct Drawing<'a, N, R, S: ?Sized> {
+    renderer: RefCell<&'a mut R>,
+    scene: &'a S,
+    config: Config,
+    format: PhantomData<N>,
+}
+
+impl<'a, N, R, S: ?Sized> Drawing<'a, N, R, S> {
+    /// `scene` under `config`, to be drawn by `renderer` (which keeps its tables between
+    /// draws: make it once, like any zrow renderer).
+    pub fn new(renderer: &'a mut R, scene: &'a S, config: Config) -> Self {
+        Drawing {
+            renderer: RefCell::new(renderer),
+            scene,
+            config,
+            format: PhantomData,
+        }
+    }
+}
+
+impl<N, R, S> Drawable for Drawing<'_, N, R, S>
+where
+    N: Scalar,
+    R: Renderer<N>,
+    S: Scene<N> + ?Sized,
+{
+    type Color = Rgb565;
+    /// The frame's statistics, or why the renderer rejected the scene.
+    type Output = Result<FrameStats, Error>;
+
+    fn draw<D: DrawTarget<Color = Rgb565>>(
+        &self,
+        target: &mut D,
+    ) -> Result<Result<FrameStats, Error>, D::Error> {
+        // Only a draw from inside this draw could find the renderer busy, and a display cannot
+        // reach it; still, that is an error, not a panic.
+        let Ok(mut renderer) = self.renderer.try_borrow_mut() else {
+            return Ok(Err(Error::BadConfig));
+        };
+        match renderer.render(self.scene, &self.config, &mut DrawTargetSink(target)) {
+            Ok(stats) => Ok(Ok(stats)),
+            Err(RenderError::Scene(e)) => Ok(Err(e)),
+            Err(RenderError::Sink(e)) => Err(e),
+        }
     }
 }

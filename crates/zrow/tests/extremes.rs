@@ -448,7 +448,7 @@ fn translate_and_repeat<N: Scalar>() {
         for y in 0..25 {
             for x in 0..25 {
                 assert_eq!(a.at(x, y), b.at(x + dx, y + dy), "{}", m.name);
-                // Depth is within the stated error of the same plane (EXTREMES 9 asks coverage
+                // Depth is within the stated error of the same plane (item 9 asks coverage
                 // only: Q16.16 planes are referenced at pixel (0, 0), so bits may differ).
                 let (za, zb) = (a.z(x, y).to_f32(), b.z(x + dx, y + dy).to_f32());
                 assert!(

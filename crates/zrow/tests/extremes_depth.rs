@@ -135,7 +135,7 @@ fn linearity_one_lsb<N: Scalar>() {
 }
 
 #[test]
-#[ignore = "bug (vs EXTREMES 16, <= 1 LSB): Q16.16 planes are referenced at pixel (0,0) with \
+#[ignore = "bug (vs docs/extremes.md item 16, <= 1 LSB): Q16.16 planes are referenced at pixel (0,0) with \
             dzdx/dzdy rounded to 2^-16, so the error grows by up to 0.5 LSB a pixel away from \
             (0,0): measured 46-52 LSB on 64x64, every method (Q24.8 alike: 48 LSB); f32 steps in \
             f32: about 21 ulps \
@@ -599,7 +599,7 @@ fn products_round_to_nearest<N: Scalar>() {
 }
 
 #[test]
-#[ignore = "bug (vs EXTREMES 19, <= 1.5 last places): fixed point now rounds each product to \
+#[ignore = "bug (vs docs/extremes.md item 19, <= 1.5 last places): fixed point now rounds each product to \
             nearest and sums exactly (0.500 measured, Q16.16 and Q24.8), but f32 rounds each \
             of the three products and three sums in f32: 1.957 last places of the largest \
             term; exact f32 needs fused multiply-adds or f64, soft-float on the M4"]
@@ -618,7 +618,7 @@ fn accumulation_exact_when_result_fits<N: Scalar>() {
 }
 
 #[test]
-#[ignore = "bug (vs EXTREMES 19, exact accumulation): fixed point sums in 64 bits (and \
+#[ignore = "bug (vs docs/extremes.md item 19, exact accumulation): fixed point sums in 64 bits (and \
             wider) and rounds once (0.500 last places, 30000 + 30000 - 30000 is 30000), but f32 \
             accumulates in f32: 1.957 last places where only the result fits"]
 fn e19_apply_accumulates_wide() {

@@ -35,7 +35,7 @@ fn draw<N: Scalar>(
     display
 }
 
-/// EXTREMES 1's golden vector: the 5x5 square from (0.5, 0.5) to (5.5, 5.5) split on its
+/// `docs/extremes.md` item 1, the golden vector: the 5x5 square from (0.5, 0.5) to (5.5, 5.5) split on its
 /// diagonal: pixel centres 0.5..4.5 lie inside or on its top and left edges, so pixels 0..=4:
 /// 15 red, 10 green, none twice (MockDisplay would panic on overdraw).
 fn split_square<N: Scalar>() {
@@ -148,4 +148,71 @@ fn the_draw_target_sink_clips_and_converts() {
     converted::<Rgb888>(&mut r, &scene, &cfg, at);
     converted::<Gray8>(&mut r, &scene, &cfg, at);
     converted::<BinaryColor>(&mut r, &scene, &cfg, at);
+}
+
+/// `Drawing` is an embedded-graphics `Drawable`: the same picture as the sink gives; a scene
+/// the renderer rejects is `Ok(Err(..))` with nothing drawn; a failing display is `Err`.
+#[test]
+fn a_drawing_is_a_drawable() {
+    use embedded_graphics::prelude::*;
+    use zrow::{Drawing, Error};
+    let q = |x: f32, y: f32| Vec3::<Q16_16>::from_f32([x, y, 1.0]).unwrap();
+    let v = [q(0.5, 0.5), q(5.5, 0.5), q(5.5, 5.5), q(0.5, 5.5)];
+    let (a, b) = ([0u16, 1, 3], [1u16, 2, 3]);
+    let f = [Face::new(&a, Rgb565::RED), Face::new(&b, Rgb565::GREEN)];
+    let scene = ScreenScene {
+        mesh: Mesh::new(&v, &f),
+    };
+    let mut r = Scanline::<Q16_16, 16, 32, 8, 8>::new();
+    let mut display = MockDisplay::new();
+    let stats = Drawing::new(&mut r, &scene, Config::screen(7, 7))
+        .draw(&mut display)
+        .unwrap()
+        .unwrap();
+    assert_eq!(stats.polygons, 2);
+    display.assert_pattern(&[
+        "RRRRRKK", "RRRRGKK", "RRRGGKK", "RRGGGKK", "RGGGGKK", "KKKKKKK", "KKKKKKK",
+    ]);
+
+    // Room for one vertex only: the scene is rejected before any pixel.
+    let mut small = Scanline::<Q16_16, 16, 1, 8, 8>::new();
+    let mut untouched = MockDisplay::<Rgb565>::new();
+    let got = Drawing::new(&mut small, &scene, Config::screen(7, 7))
+        .draw(&mut untouched)
+        .unwrap();
+    assert!(
+        matches!(
+            got,
+            Err(Error::Capacity {
+                needed: 4,
+                capacity: 1,
+                ..
+            })
+        ),
+        "{got:?}"
+    );
+    assert!(untouched
+        .bounding_box()
+        .points()
+        .all(|p| untouched.get_pixel(p).is_none()));
+
+    /// A display whose bus fails.
+    struct Broken;
+    impl OriginDimensions for Broken {
+        fn size(&self) -> Size {
+            Size::new(7, 7)
+        }
+    }
+    impl DrawTarget for Broken {
+        type Color = Rgb565;
+        type Error = &'static str;
+        fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(
+            &mut self,
+            _: I,
+        ) -> Result<(), Self::Error> {
+            Err("bus")
+        }
+    }
+    let err = Drawing::new(&mut r, &scene, Config::screen(7, 7)).draw(&mut Broken);
+    assert_eq!(err, Err("bus"));
 }
