@@ -1,5 +1,5 @@
 //! Where finished rows go: the [`RowSink`] trait, two sinks, and [`Drawing`], a 3D scene as an
-//! embedded-graphics [`Drawable`].
+//! embedded-graphics [`Drawable`](embedded_graphics_core::Drawable).
 
 use crate::error::{Error, RenderError};
 use crate::method::{FrameStats, Renderer};
@@ -119,7 +119,7 @@ where
     }
 }
 
-/// A scene drawn by a renderer, as an embedded-graphics [`Drawable`]: for a program that just
+/// A scene drawn by a renderer, as an embedded-graphics [`Drawable`](embedded_graphics_core::Drawable): for a program that just
 /// wants the scene in its display, like any other drawable.
 ///
 /// `draw` renders the whole frame through a [`DrawTargetSink`] (clipped to the target) and
