@@ -119,7 +119,7 @@ where
     }
 }
 
-/// A scene drawn by a renderer, as an embedded-graphics [`Drawable`](embedded_graphics_core::Drawable): for a program that just
+/// A scene drawn by a renderer, as an embedded-graphics [`Drawable`]: for a program that just
 /// wants the scene in its display, like any other drawable.
 ///
 /// `draw` renders the whole frame through a [`DrawTargetSink`] (clipped to the target) and
