@@ -5,8 +5,9 @@
 //! frame; then `cube` and `mesh1k`). Every frame goes through the same core as the board:
 //! [`zrow::Scanline`] sends its rows through [`zrow::DrawTargetSink`] into an embedded-graphics
 //! display (the simulator's, here). The top [`STATUS_ROWS`] rows are then overdrawn with a
-//! status line: method, number format, scene, render time on this host, polygons drawn and the
-//! renderer's RAM ([`Scanline::RAM_BYTES`] of the instantiation in use).
+//! status line: method, number format, scene, render time on this host, polygons drawn, and the
+//! RAM the scan-line method needs for this very frame (its exact requirement,
+//! [`zrow::requirements`]) beside the board's RAM ([`BOARD_RAM`]).
 //!
 //! `--model FILE` (OBJ, STL or OFF, see [`crate::model`]) puts the model first: the camera
 //! orbits it under the fixed light of [`crate::model_render`], at the demo's turning angle.
@@ -35,6 +36,9 @@ pub const SIZE: u32 = zrow_scenes::SIZE as u32;
 pub const SCALE: u32 = 2;
 /// Rows at the top that the status line covers (two lines of the 6×10 font).
 pub const STATUS_ROWS: u32 = 22;
+/// RAM of the board the demo firmware runs on (the STM32F411's 128 KiB), shown beside the
+/// frame's requirement.
+pub const BOARD_RAM: usize = 128 * 1024;
 /// Radians the scene turns per frame.
 pub const STEP: f32 = 0.03;
 /// The window's title.
@@ -209,24 +213,6 @@ impl<N: zrow::Scalar> Methods<N> {
             abuffer: None,
         }
     }
-
-    /// RAM of the renderer that draws with `algo` (its `RAM_BYTES`).
-    pub fn ram_bytes(algo: Algo) -> usize {
-        match algo {
-            // The window draws `auto` with the scan-line method (it does not analyse the
-            // scene's structure; `zrow-sim render`/`render-model` do), and never offers
-            // auto's own choices.
-            Algo::Scanline | Algo::Auto | Algo::CullOnly | Algo::Ordered => {
-                DemoScanline::<N>::RAM_BYTES
-            }
-            Algo::ZBuffer => DemoZBuffer::<N>::RAM_BYTES,
-            Algo::Tiled => DemoTiled::<N>::RAM_BYTES,
-            Algo::Warnock => DemoWarnock::<N>::RAM_BYTES,
-            Algo::DepthSort => DemoDepthSort::<N>::RAM_BYTES,
-            Algo::Bsp => DemoBsp::<N>::RAM_BYTES,
-            Algo::ABuffer => DemoABuffer::<N>::RAM_BYTES,
-        }
-    }
 }
 
 /// The renderers, one set per format.
@@ -249,14 +235,6 @@ impl Renderers {
             f32: Methods::new(),
         }
     }
-
-    /// RAM of the renderer that draws with `algo` in `format`.
-    pub fn ram_bytes(format: Format, algo: Algo) -> usize {
-        match format {
-            Format::Q16_16 => Methods::<Q16_16>::ram_bytes(algo),
-            Format::F32 => Methods::<f32>::ram_bytes(algo),
-        }
-    }
 }
 
 /// One rendered frame: how long it took and what it drew, or why it drew nothing.
@@ -266,6 +244,9 @@ pub struct Frame {
     pub time: Duration,
     /// The frame's statistics, or the error (one line).
     pub result: Result<FrameStats, String>,
+    /// Bytes of RAM the scan-line method needs for exactly this frame (its renderer sized to
+    /// the frame's [`zrow::requirements`]), when they were measured.
+    pub needs: Option<usize>,
 }
 
 /// Renders `view` into `display` (its top-left 240×240); `model` is the `--model` one, if
@@ -331,6 +312,9 @@ where
     let name = view.scene_name();
     let start = Instant::now();
     let cull = if view.cull { Cull::Back } else { Cull::None };
+    // The render's time, and the frame's exact requirement (measured after it, not timed).
+    let mut time = Duration::ZERO;
+    let mut needs = None;
     let out = match model.filter(|_| view.shows_model()) {
         // The camera orbits the model (turning by the demo's angle) under the fixed light.
         Some(model) => {
@@ -346,7 +330,10 @@ where
                 |scene, cfg| {
                     let mut cfg = *cfg;
                     cfg.cull = cull;
-                    Some(renderer.render(scene, &cfg, &mut DrawTargetSink(&mut *display)))
+                    let out = renderer.render(scene, &cfg, &mut DrawTargetSink(&mut *display));
+                    time = start.elapsed();
+                    needs = scanline_needs(scene, &cfg);
+                    Some(out)
                 },
             );
             match drawn {
@@ -360,24 +347,30 @@ where
                         view.format,
                         cull,
                     );
-                    let result = match sized {
+                    let time = start.elapsed();
+                    let (result, needs) = match sized {
                         Ok((image, req)) => {
                             let area = Rectangle::new(Point::zero(), Size::new(SIZE, SIZE));
+                            let needs = Some(zrow::scanline::ram_bytes::<N>(&req));
                             match display.fill_contiguous(&area, image.pixels) {
-                                Ok(()) => Ok(FrameStats {
-                                    polygons: req.polygons,
-                                    edges: req.edges,
-                                    max_active: req.active_polygons,
-                                    ..FrameStats::default()
-                                }),
-                                Err(e) => Err(format!("display: {e:?}")),
+                                Ok(()) => (
+                                    Ok(FrameStats {
+                                        polygons: req.polygons,
+                                        edges: req.edges,
+                                        max_active: req.active_polygons,
+                                        ..FrameStats::default()
+                                    }),
+                                    needs,
+                                ),
+                                Err(e) => (Err(format!("display: {e:?}")), needs),
                             }
                         }
-                        Err(e) => Err(e.to_string()),
+                        Err(e) => (Err(e.to_string()), None),
                     };
                     return Frame {
-                        time: start.elapsed(),
+                        time,
                         result,
+                        needs,
                     };
                 }
                 Ok(out) => out,
@@ -385,6 +378,7 @@ where
                     return Frame {
                         time: start.elapsed(),
                         result: Err(e.to_string()),
+                        needs: None,
                     }
                 }
             }
@@ -392,17 +386,37 @@ where
         None => zrow_scenes::with_scene::<N, _>(name, view.angle, |scene, cfg, _faces| {
             let mut cfg = *cfg;
             cfg.cull = cull;
-            renderer.render(scene, &cfg, &mut DrawTargetSink(&mut *display))
+            let out = renderer.render(scene, &cfg, &mut DrawTargetSink(&mut *display));
+            time = start.elapsed();
+            needs = scanline_needs(scene, &cfg);
+            out
         }),
     };
-    let time = start.elapsed();
+    if time.is_zero() {
+        time = start.elapsed();
+    }
     let result = match out {
         None => Err(format!("{name} does not fit {}", view.format.name())),
         Some(Ok(stats)) => Ok(stats),
         Some(Err(RenderError::Scene(e))) => Err(e.to_string()),
         Some(Err(RenderError::Sink(e))) => Err(format!("display: {e:?}")),
     };
-    Frame { time, result }
+    Frame {
+        time,
+        result,
+        needs,
+    }
+}
+
+/// Bytes of RAM the scan-line method needs for exactly this frame: its renderer sized to the
+/// frame's requirements. `None` if the scene cannot be measured (then it did not render).
+fn scanline_needs<N: zrow::Scalar>(
+    scene: &(impl zrow::Scene<N> + ?Sized),
+    cfg: &zrow::Config,
+) -> Option<usize> {
+    zrow::requirements(scene, cfg)
+        .ok()
+        .map(|req| zrow::scanline::ram_bytes::<N>(&req))
 }
 
 /// The two status lines (each at most 40 characters, the width of the 6×10 font).
@@ -425,11 +439,13 @@ pub fn status_text(view: &View, frame: &Frame, time: Duration) -> [String; 2] {
             } else {
                 format!("{:.1}ms", us as f64 / 1000.0)
             };
-            format!(
-                "{t} {} polys RAM {}K",
-                stats.polygons,
-                Renderers::ram_bytes(view.format, view.algo()).div_ceil(1024)
-            )
+            let needs = match frame.needs {
+                Some(bytes) => {
+                    format!(" needs {:.1}K/{}K", bytes as f64 / 1024.0, BOARD_RAM / 1024)
+                }
+                None => String::new(),
+            };
+            format!("{t} {} polys{needs}", stats.polygons)
         }
         Err(e) => format!("error: {e}"),
     };
@@ -705,6 +721,22 @@ mod tests {
     }
 
     #[test]
+    fn the_status_line_shows_the_frames_exact_requirement_beside_the_board() {
+        let view = View::default();
+        let mut display = new_display();
+        let frame = render(&mut Renderers::new(), &view, None, &mut display);
+        let want =
+            zrow_scenes::with_scene::<Q16_16, _>(view.scene_name(), view.angle, |s, c, _| {
+                zrow::scanline::ram_bytes::<Q16_16>(&zrow::requirements(s, c).unwrap())
+            })
+            .unwrap();
+        assert_eq!(frame.needs, Some(want));
+        let [_, second] = status_text(&view, &frame, frame.time);
+        let shown = format!("needs {:.1}K/128K", want as f64 / 1024.0);
+        assert!(second.ends_with(&shown), "{second} vs {shown}");
+    }
+
+    #[test]
     fn the_first_frame_is_drawn_below_the_status_line() {
         let display = first_frame(true, None);
         let lit = (STATUS_ROWS as i32..SIZE as i32)
@@ -715,6 +747,7 @@ mod tests {
         let frame = Frame {
             time: Duration::from_micros(1234),
             result: Err("polygon table holds 2 but this scene needs 9".into()),
+            needs: None,
         };
         let [_, second] = status_text(&View::default(), &frame, frame.time);
         assert!(second.starts_with("error: polygon table"), "{second}");
