@@ -42,6 +42,13 @@ while IFS= read -r line; do
   esac
 done < <(cargo run --release -q -p zrow-st7789 --example wire)
 
+# The board sink's cost on the emulated M4 (the bench's two `board sink` lines).
+sink() { grep "^# board sink, mesh1k: $1" emu/target/bench-m4.txt | sed -E 's/.*instructions=([0-9]+).*/\1/'; }
+encode="$(sink "encoding 240 rows for")"
+signed="$(sink "encoding 240 rows and")"
+expect "board sink, encoding" "takes $(thousands "$encode") instructions"
+expect "board sink, signatures" "signatures $(thousands $((signed - encode))) more (about $(awk -v d=$((signed - encode)) 'BEGIN { printf "%.1f", d / 1e5 }') ms"
+
 # The converted torus's scan-line RAM (the README's convert command).
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT

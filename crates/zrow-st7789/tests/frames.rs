@@ -95,3 +95,41 @@ fn consecutive_frames() {
         assert_eq!(model.writes_at(30 + 63, 100 + 47), 1);
     }
 }
+
+/// `encode_row` (two pixels a word) against the plain definition, pixel by pixel: every
+/// length from 0 to 9 pixels, buffers too short, exactly long enough and longer.
+#[test]
+fn encode_row_is_big_endian_rgb565_pixel_by_pixel() {
+    use embedded_graphics_core::pixelcolor::IntoStorage;
+    let pixels: Vec<Rgb565> = (0..9u16)
+        .map(|i| {
+            Rgb565::from(embedded_graphics_core::pixelcolor::raw::RawU16::new(
+                0x1234u16.wrapping_mul(i + 7) ^ (i << 11),
+            ))
+        })
+        .collect();
+    for len in 0..=pixels.len() {
+        for cap in [
+            0,
+            1,
+            2 * len.saturating_sub(1),
+            2 * len + 1,
+            2 * len,
+            2 * len + 3,
+        ] {
+            let row = &pixels[..len];
+            let mut out = vec![0xAAu8; cap];
+            let n = zrow_st7789::encode_row(row, &mut out);
+            let whole = (cap / 2).min(len);
+            assert_eq!(n, 2 * whole, "len {len} cap {cap}");
+            for (k, px) in row[..whole].iter().enumerate() {
+                assert_eq!(
+                    out[2 * k..2 * k + 2],
+                    px.into_storage().to_be_bytes(),
+                    "len {len} px {k}"
+                );
+            }
+            assert!(out[n..].iter().all(|&b| b == 0xAA), "wrote past {n}");
+        }
+    }
+}
