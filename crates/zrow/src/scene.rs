@@ -67,8 +67,36 @@ pub struct Face<'a, I = u16> {
     pub alpha: u8,
 }
 
+impl<'a, I: MeshIndex> Face<'a, I> {
+    /// An opaque face with indices of any [`MeshIndex`] type: `u8` (a converted model of up to
+    /// 256 vertices), `u16` or `u32` (host-sized meshes).
+    ///
+    /// ```
+    /// use zrow::{Face, Rgb565};
+    /// let small: Face<'_, u8> = Face::opaque(&[0u8, 1, 2], Rgb565::new(31, 0, 0));
+    /// assert_eq!((small.indices, small.alpha), (&[0u8, 1, 2][..], 255));
+    /// ```
+    pub const fn opaque(indices: &'a [I], color: Rgb565) -> Self {
+        Face {
+            indices,
+            color,
+            alpha: 255,
+        }
+    }
+
+    /// A face with opacity `alpha` (0 = invisible, 255 = opaque), indices of any type.
+    pub const fn translucent_of(indices: &'a [I], color: Rgb565, alpha: u8) -> Self {
+        Face {
+            indices,
+            color,
+            alpha,
+        }
+    }
+}
+
 impl<'a> Face<'a, u16> {
-    /// An opaque face (`u16` indices; for `u8` write the struct literal).
+    /// An opaque face with `u16` indices (so integer literals need no suffix; any index type:
+    /// [`Face::opaque`]).
     pub const fn new(indices: &'a [u16], color: Rgb565) -> Self {
         Face {
             indices,
@@ -76,7 +104,8 @@ impl<'a> Face<'a, u16> {
             alpha: 255,
         }
     }
-    /// A face with opacity `alpha` (0 = invisible, 255 = opaque).
+    /// A face with opacity `alpha` (0 = invisible, 255 = opaque), `u16` indices (any index
+    /// type: [`Face::translucent_of`]).
     pub const fn translucent(indices: &'a [u16], color: Rgb565, alpha: u8) -> Self {
         Face {
             indices,
