@@ -113,6 +113,8 @@ fn wait_spi_idle() {
 
 impl<N, DC: OutputPin> RowSink<N> for DmaRows<DC> {
     type Error = Infallible;
+    /// The panel takes colours only: the renderer need not write its depth row.
+    const WANTS_DEPTH: bool = false;
 
     fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), Infallible> {
         if row.y == 0 {

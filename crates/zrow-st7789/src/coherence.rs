@@ -349,6 +349,8 @@ impl<N, SPI: SpiDevice, DC: OutputPin, const B: usize, const H: usize> RowSink<N
     for CoherentRows<SPI, DC, B, H>
 {
     type Error = Error<SPI::Error, DC::Error>;
+    /// The panel takes colours only: the renderer need not write its depth row.
+    const WANTS_DEPTH: bool = false;
 
     /// Checks the row's place and length, encodes it, and sends it only if it changed (with
     /// the window first after a gap). On a bus error the next frame goes whole.

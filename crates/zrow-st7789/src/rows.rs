@@ -240,6 +240,8 @@ impl<SPI: SpiDevice, DC: OutputPin, const B: usize> St7789Rows<SPI, DC, B> {
 
 impl<N, SPI: SpiDevice, DC: OutputPin, const B: usize> RowSink<N> for St7789Rows<SPI, DC, B> {
     type Error = Error<SPI::Error, DC::Error>;
+    /// The panel takes colours only: the renderer need not write its depth row.
+    const WANTS_DEPTH: bool = false;
 
     /// Checks the row's place and length, encodes it big-endian into the line buffer and
     /// sends it with DC high in one SPI write.
