@@ -2,10 +2,11 @@
 # The README's measured figures against the commands that measure them: fails, naming the
 # figure and both values, when a quoted figure no longer matches its measurement (figures are
 # generated, not typed). CI runs it after the firmware size check and the emulated bench
-# (it reads emu/target/bench-m4.txt, which `bash emu/run.sh m4` writes).
+# (it reads emu/target/bench-m4.txt, which `bash emu/run.sh m4` writes, and
+# target/board/shipped.txt, which `bash emu/board/run.sh` writes).
 #
-# Checked: the firmware's flash and static RAM and the bytes per frame on the wire ("On the
-# board"), the converted torus's scan-line RAM ("Bring your own model"), the emulated cube counts of cull-only and the
+# Checked: the firmware's flash and static RAM, the bytes per frame on the wire and the board in
+# the loop's frame rates ("On the board"), the converted torus's scan-line RAM ("Bring your own model"), the emulated cube counts of cull-only and the
 # scan-line method ("Methods"), and the scan-line RAM column of the methods table against
 # docs/methods/foley.md (which its own command writes).
 set -euo pipefail
@@ -48,6 +49,20 @@ encode="$(sink "encoding 240 rows for")"
 signed="$(sink "encoding 240 rows and")"
 expect "board sink, encoding" "takes $(thousands "$encode") instructions"
 expect "board sink, signatures" "signatures $(thousands $((signed - encode))) more (about $(awk -v d=$((signed - encode)) 'BEGIN { printf "%.1f", d / 1e5 }') ms"
+
+# The board in the loop's table (emu/board/run.sh, which CI runs first, keeps it).
+board=target/board/shipped.txt
+if [ -s "$board" ]; then
+  while IFS= read -r line; do
+    case "$line" in
+      "| interlocked"* | "| cube"* | "| mesh1k"*)
+        expect "board in the loop, $(echo "$line" | cut -d'|' -f2 | xargs)" "$line" ;;
+    esac
+  done <"$board"
+else
+  echo "check-figures: $board missing: run bash emu/board/run.sh first" >&2
+  fail=1
+fi
 
 # The converted torus's scan-line RAM (the README's convert command).
 tmp="$(mktemp -d)"

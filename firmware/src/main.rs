@@ -44,8 +44,20 @@ static RENDERER: ConstStaticCell<Renderer> = ConstStaticCell::new(Renderer::new(
 static ROW_A: ConstStaticCell<[u8; ROW_BYTES]> = ConstStaticCell::new([0; ROW_BYTES]);
 static ROW_B: ConstStaticCell<[u8; ROW_BYTES]> = ConstStaticCell::new([0; ROW_BYTES]);
 
-/// Frames per demo scene (the simulator's demos, `zrow_scenes::DEMOS`).
-const FRAMES_PER_SCENE: u32 = 256;
+/// Frames per demo scene (the simulator's demos, `zrow_scenes::DEMOS`). A static read at
+/// every frame, so a debugger, or the board-in-the-loop test (`emu/board`), can shorten the
+/// scenes without another build.
+#[no_mangle]
+static FRAMES_PER_SCENE: u32 = 256;
+
+/// Called after every frame with its number, once its last row is handed to the DMA engine:
+/// a place for a debugger's breakpoint, and the frame marker of the board-in-the-loop test.
+/// Does nothing.
+#[no_mangle]
+#[inline(never)]
+pub extern "C" fn zrow_frame_done(frame: u32) {
+    core::hint::black_box(frame);
+}
 
 /// A panic (none is expected: the core reports bad input as errors) logs where it happened
 /// and stops on a fault. Only the location is logged: the message would pull in `core::fmt`,
@@ -125,7 +137,9 @@ fn main() -> ! {
     let mut frame = 0u32;
     loop {
         let demos = zrow_scenes::DEMOS;
-        let name = demos[(frame / FRAMES_PER_SCENE) as usize % demos.len()];
+        // SAFETY: a plain read of an immutable static (volatile: a debugger may change it).
+        let per_scene = unsafe { core::ptr::read_volatile(&FRAMES_PER_SCENE) }.max(1);
+        let name = demos[(frame / per_scene) as usize % demos.len()];
         let angle = frame as f32 * 0.03;
         rows.wait_cycles = 0;
         let t0 = DWT::cycle_count();
@@ -147,6 +161,7 @@ fn main() -> ! {
             Some(Err(e)) => defmt::error!("{=str}: {}", name, e),
             None => defmt::error!("no scene {=str}", name),
         }
+        zrow_frame_done(frame);
         frame = frame.wrapping_add(1);
     }
 }

@@ -1,0 +1,95 @@
+#!/usr/bin/env bash
+# Board in the loop: boots the shipped F411 firmware ELF (firmware/, the image `cargo run
+# --release` flashes) in the Unicorn engine with a model of the STM32F411 peripherals it uses
+# (emu/board/f411.py), decodes what it clocks out of SPI through the ST7789 panel model, checks
+# every frame against the host's render of the same demo frame bit for bit, and prints the
+# estimated frames per second per demo scene (instructions taken as cycles at 100 MHz).
+#
+# Then the same check must FAIL on deliberately broken firmware, built from copies of firmware/
+# with one change each (so the check is known to catch them):
+#   dc-polarity    command bytes sent with DC high and parameters with DC low;
+#   half-row       each row handed to DMA with only its first half encoded (the buffer handed
+#                  over before it is full: the rest is stale);
+#   no-inversion   the panel's colour inversion (INVON) left out of its initialisation.
+#
+# usage: emu/board/run.sh [FRAMES_PER_SCENE]   (default 3: 9 frames, the three demo scenes)
+# Writes target/board/: the stream files, shipped.txt (the table), the mutants' logs.
+# Installs python3-venv with apt-get if missing, and Unicorn, capstone and pyelftools (pinned)
+# into emu/board/.venv from PyPI.
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+root="$(cd "$here/../.." && pwd)"
+per_scene="${1:-3}"
+frames=$((3 * per_scene))
+# Outside emu/ (whose .cargo/config.toml would add its link flags to the mutants' builds).
+out="$root/target/board"
+mkdir -p "$out"
+
+if ! python3 -m venv --help >/dev/null 2>&1 || ! python3 -c 'import ensurepip' 2>/dev/null; then
+  sudo_="$( [ "$(id -u)" = 0 ] || echo sudo )"
+  $sudo_ apt-get update -qq && $sudo_ apt-get install -y -qq python3-venv >/dev/null
+fi
+venv="$here/.venv"
+if ! "$venv/bin/python" -c 'import unicorn, capstone, elftools' 2>/dev/null; then
+  python3 -m venv "$venv"
+  "$venv/bin/pip" install --quiet --disable-pip-version-check \
+    unicorn==2.1.4 capstone==5.0.7 pyelftools==0.33
+fi
+py="$venv/bin/python"
+
+(cd "$root" && cargo build --release -q -p zrow-st7789 --example replay)
+replay="$root/target/release/examples/replay"
+
+# Boots FIRMWARE_DIR's release ELF and checks its frames; the replay's table on stdout.
+check() { # dir name
+  local dir="$1" name="$2"
+  (cd "$dir" && CARGO_TARGET_DIR="$out/target" cargo build --release -q) || return 3
+  local elf="$out/target/thumbv7em-none-eabihf/release/zrow-firmware"
+  "$py" "$here/f411.py" "$elf" "$out/$name.stream" --frames-per-scene "$per_scene" \
+    --frames "$frames" || return 1
+  "$replay" "$out/$name.stream"
+}
+
+echo "== the shipped firmware: $frames frames, $per_scene per demo scene"
+# Its table is kept for scripts/check-figures.sh (the README quotes it).
+check "$root/firmware" shipped | tee "$out/shipped.txt"
+
+fail=0
+mutant() { # name, then a python snippet editing the text of file $2 in the copy
+  local name="$1" file="$2" edit="$3"
+  local copy="$out/mutant-$name"
+  rm -rf "$copy" && mkdir -p "$copy"
+  cp -r "$root/firmware/src" "$root/firmware/Cargo.toml" "$root/firmware/Cargo.lock" \
+    "$root/firmware/build.rs" "$root/firmware/.cargo" "$copy/"
+  # Paths in the copy's manifest point back at the repository's crates.
+  sed -i "s#path = \"\\.\\./#path = \"$root/#g" "$copy/Cargo.toml"
+  sed -i "s#\"\\.\\./memory.x\"#\"$root/memory.x\"#g" "$copy/build.rs"
+  "$py" - "$copy/$file" "$edit" <<'PY'
+import sys
+path, edit = sys.argv[1], sys.argv[2]
+old, new = edit.split("=>", 1)
+text = open(path).read()
+if old not in text:
+    sys.exit(f"mutation does not apply: {old!r} not in {path}")
+open(path, "w").write(text.replace(old, new, 1))
+PY
+  echo "== mutant $name: the check must fail"
+  local rc=0
+  check "$copy" "mutant-$name" >"$out/mutant-$name.log" 2>&1 || rc=$?
+  if [ "$rc" = 0 ]; then
+    echo "error: mutant $name passed the check" >&2
+    fail=1
+  elif [ "$rc" = 3 ]; then
+    echo "error: mutant $name does not build (see $out/mutant-$name.log)" >&2
+    fail=1
+  else
+    echo "caught: $(grep -m1 -E 'error|differ|protocol|panel ends' "$out/mutant-$name.log" || tail -1 "$out/mutant-$name.log")"
+  fi
+}
+mutant dc-polarity src/dma_rows.rs \
+  'let _ = self.dc.set_low();=>let _ = self.dc.set_high();'
+mutant half-row src/dma_rows.rs \
+  'let n = encode_row(row.intensity, spare);=>let n = encode_row(row.intensity, spare); encode_row(&[zrow::pixelcolor::Rgb565::new(0, 0, 0); 120], &mut spare[240..]);'
+mutant no-inversion src/main.rs \
+  '.invert_colors(ColorInversion::Inverted)=>'
+exit "$fail"
