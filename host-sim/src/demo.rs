@@ -7,7 +7,7 @@
 //! display (the simulator's, here). The top [`STATUS_ROWS`] rows are then overdrawn with a
 //! status line: method, number format, scene, render time on this host, polygons drawn, and the
 //! RAM the scan-line method needs for this very frame (its exact requirement,
-//! [`zrow::requirements`]) beside the board's RAM ([`BOARD_RAM`]).
+//! [`zrow::requirements()`]) beside the board's RAM ([`BOARD_RAM`]).
 //!
 //! `--model FILE` (OBJ, STL or OFF, see [`crate::model`]) puts the model first: the camera
 //! orbits it under the fixed light of [`crate::model_render`], at the demo's turning angle.
@@ -245,7 +245,7 @@ pub struct Frame {
     /// The frame's statistics, or the error (one line).
     pub result: Result<FrameStats, String>,
     /// Bytes of RAM the scan-line method needs for exactly this frame (its renderer sized to
-    /// the frame's [`zrow::requirements`]), when they were measured.
+    /// the frame's [`zrow::requirements()`]), when they were measured.
     pub needs: Option<usize>,
 }
 
