@@ -72,26 +72,13 @@ fn main() {
         let mean = total as f64 / (FRAMES - 1) as f64;
         println!(
             "| {name} | {} B | {} B ({:.0} %) | {} B | {} B | {:.1} → {:.1} ms |",
-            thousands(whole as u64),
-            thousands(mean.round() as u64),
+            whole as u64,
+            mean.round() as u64,
             100.0 * mean / whole,
-            thousands(least),
-            thousands(most),
+            least,
+            most,
             ms(whole),
             ms(mean)
         );
     }
-}
-
-/// 115211 → "115,211".
-fn thousands(v: u64) -> String {
-    let s = v.to_string();
-    let mut out = String::new();
-    for (i, c) in s.chars().enumerate() {
-        if i > 0 && (s.len() - i) % 3 == 0 {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
 }
