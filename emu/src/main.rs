@@ -145,7 +145,7 @@ impl<N> zrow::RowSink<N> for RowsInto<'_> {
     const WANTS_DEPTH: bool = false;
     fn write_row(&mut self, row: &zrow::Row<'_, N>) -> Result<(), ()> {
         let dst = self.0.get_mut(row.y as usize).ok_or(())?;
-        for (d, s) in dst.iter_mut().zip(row.intensity) {
+        for (d, s) in dst.iter_mut().zip(row.color) {
             *d = *s;
         }
         Ok(())

@@ -123,7 +123,7 @@ impl<N, DC: OutputPin> RowSink<N> for DmaRows<DC> {
         let mut waited = 0u32;
         self.state = match core::mem::replace(&mut self.state, State::Switching) {
             State::Idle(stream, tx, a, b) => {
-                let n = encode_row(row.intensity, a);
+                let n = encode_row(row.color, a);
                 match self.coherence.row(row.y, &a[..n]) {
                     RowAction::Skip => State::Idle(stream, tx, a, b),
                     // Nothing is open before the first transfer: always a new run.
@@ -146,7 +146,7 @@ impl<N, DC: OutputPin> RowSink<N> for DmaRows<DC> {
                 }
             }
             State::Running(mut t, spare) => {
-                let n = encode_row(row.intensity, spare);
+                let n = encode_row(row.color, spare);
                 let action = self.coherence.row(row.y, &spare[..n]);
                 if action == RowAction::Skip {
                     State::Running(t, spare)

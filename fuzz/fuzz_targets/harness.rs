@@ -37,7 +37,7 @@ impl<N> RowSink<N> for Sink {
     fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), ()> {
         assert_eq!(row.y, self.next, "rows top to bottom, each once");
         assert!(row.y < self.height, "no row past the frame");
-        assert_eq!(row.intensity.len(), row.depth.len());
+        assert_eq!(row.color.len(), row.depth.len());
         self.next += 1;
         Ok(())
     }

@@ -229,9 +229,9 @@ impl<N> RowSink<N> for BandRows<'_> {
     fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), Self::Error> {
         if self.rows.contains(&row.y) {
             let start = usize::from(row.y) * self.width;
-            let n = row.intensity.len().min(self.width);
+            let n = row.color.len().min(self.width);
             if let Some(dst) = self.pixels.get_mut(start..start + n) {
-                dst.copy_from_slice(&row.intensity[..n]);
+                dst.copy_from_slice(&row.color[..n]);
             }
         }
         Ok(())

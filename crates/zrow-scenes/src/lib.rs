@@ -359,7 +359,7 @@ impl<N> zrow::RowSink<N> for FrameHash {
     /// Colours only.
     const WANTS_DEPTH: bool = false;
     fn write_row(&mut self, row: &zrow::Row<'_, N>) -> Result<(), Self::Error> {
-        self.add(row.intensity);
+        self.add(row.color);
         Ok(())
     }
 }

@@ -266,14 +266,14 @@ impl<SPI, DC, const B: usize> St7789Rows<SPI, DC, B> {
             });
         }
         let width = self.window.width;
-        if row.intensity.len() != width as usize {
+        if row.color.len() != width as usize {
             return Err(StreamError::WrongLength {
                 expected: width,
-                got: u32::try_from(row.intensity.len()).unwrap_or(u32::MAX),
+                got: u32::try_from(row.color.len()).unwrap_or(u32::MAX),
             });
         }
         // `new` checked B >= 2 * width, so the whole row fits.
-        Ok(encode_row(row.intensity, &mut self.line))
+        Ok(encode_row(row.color, &mut self.line))
     }
 
     /// The row due has been dealt with: the next one is due (none after the window's last).

@@ -43,7 +43,7 @@ impl DmaLike {
 impl<N> RowSink<N> for DmaLike {
     type Error = ();
     fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), ()> {
-        let n = encode_row(row.intensity, &mut self.line);
+        let n = encode_row(row.color, &mut self.line);
         match self.coherence.row(row.y, &self.line[..n]) {
             RowAction::Skip => return Ok(()),
             RowAction::Continue => {}
@@ -171,7 +171,7 @@ fn send_frame<S: RowSink<Q16_16>>(sink: &mut S, frame: &[Vec<Rgb565>]) -> Result
     for (y, px) in frame.iter().enumerate() {
         sink.write_row(&Row {
             y: y as u16,
-            intensity: px,
+            color: px,
             depth: &[],
         })?;
     }

@@ -82,7 +82,7 @@ fn row(y: u16, pixels: &[Rgb565], depth: &[f32]) -> Row<'static, f32> {
     // Leak for a 'static row in tests: small and bounded.
     Row {
         y,
-        intensity: Vec::leak(pixels.to_vec()),
+        color: Vec::leak(pixels.to_vec()),
         depth: Vec::leak(depth.to_vec()),
     }
 }

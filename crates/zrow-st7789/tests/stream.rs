@@ -32,7 +32,7 @@ impl<N> RowSink<N> for DmaLike<'_> {
                 self.model.feed(true, params);
             }
         }
-        let n = encode_row(row.intensity, &mut self.line);
+        let n = encode_row(row.color, &mut self.line);
         self.model.feed(true, &self.line[..n]);
         Ok(())
     }

@@ -32,8 +32,8 @@ impl<N: Scalar> RowSink<N> for Capture<'_> {
     type Error = Infallible;
     fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), Infallible> {
         let y = row.y as usize;
-        let w = row.intensity.len();
-        self.0.colour[y * w..(y + 1) * w].copy_from_slice(row.intensity);
+        let w = row.color.len();
+        self.0.colour[y * w..(y + 1) * w].copy_from_slice(row.color);
         for (d, &z) in self.0.depth[y * w..(y + 1) * w].iter_mut().zip(row.depth) {
             *d = if z == N::MAX {
                 f64::INFINITY

@@ -52,7 +52,7 @@ impl<N> RowSink<N> for ProbeSink {
     /// A display's sink: colours only.
     const WANTS_DEPTH: bool = false;
     fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), Infallible> {
-        let px = black_box(row.intensity);
+        let px = black_box(row.color);
         let n = px.len();
         let raw = |x: usize| u32::from(px[x].into_storage());
         self.acc = self.acc.rotate_left(5) ^ raw(0) ^ raw(n / 2) ^ raw(n - 1) ^ u32::from(row.y);
@@ -71,11 +71,7 @@ impl<N> RowSink<N> for CountSink {
     type Error = Infallible;
     fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), Infallible> {
         self.rows += 1;
-        self.drawn += row
-            .intensity
-            .iter()
-            .filter(|&&c| c != self.background)
-            .count();
+        self.drawn += row.color.iter().filter(|&&c| c != self.background).count();
         Ok(())
     }
 }

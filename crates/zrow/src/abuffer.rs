@@ -213,7 +213,7 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const F: usize>
             );
             sink.write_row(&Row {
                 y: y as u16,
-                intensity: &self.intensity[..w],
+                color: &self.intensity[..w],
                 depth: &self.depth[..w],
             })
             .map_err(RenderError::Sink)?;

@@ -371,7 +371,7 @@ pub fn paint_in_order<N: Scalar, const P: usize, const E: usize, K: RowSink<N>>(
         crate::shading::Cue::shade_row_if_perspective(cue, depth, intensity);
         sink.write_row(&Row {
             y: y as u16,
-            intensity,
+            color: intensity,
             depth: if want_depth { depth } else { &[] },
         })?;
     }

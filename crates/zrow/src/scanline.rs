@@ -591,7 +591,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             };
             sink.write_row(&Row {
                 y: y as u16,
-                intensity: &self.intensity[..width],
+                color: &self.intensity[..width],
                 depth,
             })?;
             self.advance(y, cfg);

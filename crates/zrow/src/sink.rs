@@ -15,13 +15,14 @@ use embedded_graphics_core::pixelcolor::Rgb565;
 use embedded_graphics_core::primitives::Rectangle;
 use embedded_graphics_core::Drawable;
 
-/// One finished row: its `intensity[x]` and `depth[x]`.
+/// One finished row: the colour `color[x]` and the depth `depth[x]` of every pixel (the
+/// `intensity[x]` and `depth[x]` of the scan-line method's description).
 #[derive(Clone, Copy, Debug)]
 pub struct Row<'a, N> {
     /// Row number, 0 at the top.
     pub y: u16,
     /// The colour of every pixel, left to right.
-    pub intensity: &'a [Rgb565],
+    pub color: &'a [Rgb565],
     /// The visible depth at every pixel (the format's maximum where nothing is drawn); empty
     /// when the sink said it does not read it ([`RowSink::WANTS_DEPTH`]) and the renderer
     /// skipped it.
@@ -71,9 +72,9 @@ impl<N> RowSink<N> for FrameBuffer<'_> {
     const WANTS_DEPTH: bool = false;
     fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), Infallible> {
         let start = row.y as usize * self.width;
-        let n = row.intensity.len().min(self.width);
+        let n = row.color.len().min(self.width);
         if let Some(dst) = self.pixels.get_mut(start..start + n) {
-            dst.copy_from_slice(&row.intensity[..n]);
+            dst.copy_from_slice(&row.color[..n]);
         }
         Ok(())
     }
@@ -106,8 +107,8 @@ where
         }
         // Columns of the row that land on the target: left.max(0) .. right.min(len).
         let x0 = left.max(0) as usize;
-        let x1 = (right.max(0) as usize).min(row.intensity.len());
-        let Some(pixels) = row.intensity.get(x0..x1) else {
+        let x1 = (right.max(0) as usize).min(row.color.len());
+        let Some(pixels) = row.color.get(x0..x1) else {
             return Ok(()); // nothing of this row is on the target
         };
         let area = Rectangle::new(

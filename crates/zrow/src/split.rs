@@ -376,7 +376,7 @@ pub fn paint_rows<N: Scalar, K: RowSink<N>, const P: usize, const E: usize, cons
         crate::shading::Cue::shade_row_if_perspective(cue, &depth[..w], &mut intensity[..w]);
         sink.write_row(&Row {
             y: y as u16,
-            intensity: &intensity[..w],
+            color: &intensity[..w],
             depth: &depth[..w],
         })?;
     }

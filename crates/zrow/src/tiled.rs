@@ -433,7 +433,7 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize>
             );
             sink.write_row(&Row {
                 y: y as u16,
-                intensity: &self.color_row[..w],
+                color: &self.color_row[..w],
                 depth: &self.depth_row[..w],
             })?;
         }

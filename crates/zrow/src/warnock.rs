@@ -271,7 +271,7 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, 
                     );
                     let row = Row {
                         y: y as u16,
-                        intensity: &c[..w as usize],
+                        color: &c[..w as usize],
                         depth: &d[..w as usize],
                     };
                     sink.write_row(&row).map_err(RenderError::Sink)?;

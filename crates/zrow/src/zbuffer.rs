@@ -110,7 +110,7 @@ impl<N: Scalar, const W: usize, const H: usize> ZBuffer<N, W, H> {
             );
             sink.write_row(&Row {
                 y: y as u16,
-                intensity: &self.intensity[y][..w],
+                color: &self.intensity[y][..w],
                 depth: &self.depth[y][..w],
             })
             .map_err(RenderError::Sink)?;

@@ -199,7 +199,7 @@ fn perspective_cue_is_the_flat_colour_times_the_factor_at_each_pixels_depth() {
     impl zrow::RowSink<Q16_16> for Rows {
         type Error = ();
         fn write_row(&mut self, r: &zrow::Row<'_, Q16_16>) -> Result<(), ()> {
-            self.0.push((r.intensity.to_vec(), r.depth.to_vec()));
+            self.0.push((r.color.to_vec(), r.depth.to_vec()));
             Ok(())
         }
     }

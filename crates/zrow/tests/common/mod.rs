@@ -49,12 +49,12 @@ impl<N: Scalar> RowSink<N> for Capture<N> {
     type Error = ();
     fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), ()> {
         assert_eq!(row.y, self.next_row, "rows out of order");
-        assert_eq!(row.intensity.len(), self.width, "row length");
+        assert_eq!(row.color.len(), self.width, "row length");
         assert_eq!(row.depth.len(), self.width, "depth row length");
         self.next_row += 1;
         self.rows_received += 1;
         let o = row.y as usize * self.width;
-        self.color[o..o + self.width].copy_from_slice(row.intensity);
+        self.color[o..o + self.width].copy_from_slice(row.color);
         self.depth[o..o + self.width].copy_from_slice(row.depth);
         Ok(())
     }
