@@ -1144,14 +1144,7 @@ fn compose(a: &Rot, b: &Rot) -> Rot {
 
 /// A measured capacity plus [`MARGIN_PERCENT`], rounded up, at least 1.
 pub fn with_margin(req: &Requirements) -> Requirements {
-    let m = |x: u32| x + (x * MARGIN_PERCENT).div_ceil(100).max(1);
-    Requirements {
-        polygons: m(req.polygons),
-        edges: m(req.edges),
-        vertices: m(req.vertices),
-        active_polygons: m(req.active_polygons),
-        width: req.width,
-    }
+    req.with_margin(MARGIN_PERCENT)
 }
 
 /// What `mesh` needs seen in orientation `rot` by the converter's camera.

@@ -124,6 +124,33 @@ pub use scene::{
 pub use sink::{DrawTargetSink, Drawing, FrameBuffer, Row, RowSink};
 pub use zbuffer::ZBuffer;
 
+/// The scan-line renderer sized by a [`Requirements`] constant, each capacity taken from its
+/// own field — `Scanline<N, {width}, {vertices}, {polygons}, {active_polygons}>` — so that
+/// none can be swapped with another. The constant comes from [`requirements()`] (with
+/// [`Requirements::max`] over an animation's views and [`Requirements::with_margin`]) or from
+/// the converter.
+///
+/// ```
+/// use zrow::{scanline_for, Requirements, Q16_16};
+/// const REQ: Requirements = Requirements {
+///     polygons: 480, edges: 1344, vertices: 512, active_polygons: 72, width: 240,
+/// };
+/// type Renderer = scanline_for!(Q16_16, REQ);
+/// assert_eq!(Renderer::RAM_BYTES, core::mem::size_of::<zrow::Scanline<Q16_16, 240, 512, 480, 72>>());
+/// ```
+#[macro_export]
+macro_rules! scanline_for {
+    ($n:ty, $req:expr) => {
+        $crate::Scanline<
+            $n,
+            { $req.width as usize },
+            { $req.vertices as usize },
+            { $req.polygons as usize },
+            { $req.active_polygons as usize },
+        >
+    };
+}
+
 /// Includes a mesh a build script generated, so a converted model becomes `static` data in
 /// flash: `include_mesh!("name")` expands to
 /// `include!(concat!(env!("OUT_DIR"), "/", "name", ".rs"))`.

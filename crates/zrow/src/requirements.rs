@@ -31,6 +31,37 @@ impl Requirements {
     pub fn active_edges(&self) -> u32 {
         2 * self.active_polygons
     }
+    /// Each capacity raised by `percent` %, rounded up, and by at least 1 (the width is
+    /// kept): room for the views an animation shows between the ones that were measured.
+    ///
+    /// ```
+    /// let req = zrow::Requirements { polygons: 462, edges: 1316, vertices: 500, active_polygons: 67, width: 240 };
+    /// let sized = req.with_margin(10);
+    /// assert_eq!((sized.polygons, sized.vertices, sized.active_polygons), (509, 550, 74));
+    /// // At least one more; never past u32::MAX.
+    /// let edge = zrow::Requirements { polygons: 0, edges: u32::MAX, ..req }.with_margin(10);
+    /// assert_eq!((edge.polygons, edge.edges, edge.width), (1, u32::MAX, 240));
+    /// ```
+    pub const fn with_margin(self, percent: u32) -> Self {
+        const fn up(x: u32, percent: u32) -> u32 {
+            let extra = (x as u64 * percent as u64).div_ceil(100);
+            let extra = if extra == 0 { 1 } else { extra };
+            let v = x as u64 + extra;
+            if v > u32::MAX as u64 {
+                u32::MAX
+            } else {
+                v as u32
+            }
+        }
+        Requirements {
+            polygons: up(self.polygons, percent),
+            edges: up(self.edges, percent),
+            vertices: up(self.vertices, percent),
+            active_polygons: up(self.active_polygons, percent),
+            width: self.width,
+        }
+    }
+
     /// The larger of two requirements, field by field (for a set of views).
     pub fn max(self, o: Self) -> Self {
         Requirements {
@@ -49,8 +80,46 @@ const ROWS_PER_PASS: usize = 256;
 /// Measures what `scene` needs under `cfg`, without allocating or asking for scratch: the
 /// scene's geometry runs once for frames up to 256 rows tall, once more per further 256 rows.
 ///
-/// For an animation, take the [`Requirements::max`] of the views it will show (a converter
-/// samples orientations the same way), then size the renderer from it.
+/// For an animation, take the [`Requirements::max`] of the views it will show, add a margin
+/// for the views between them ([`Requirements::with_margin`]), and size the renderer from the
+/// result with [`scanline_for!`](crate::scanline_for), which takes each capacity from its own
+/// field. A converter samples orientations the same way. Measured on the host, the figures go
+/// into a `const` for the firmware:
+///
+/// ```
+/// use zrow::{requirements, Affine, Camera, Config, Face, Light, Mesh, ModelScene, Object};
+/// use zrow::{scanline_for, Requirements, Scalar, Vec3, Q16_16};
+/// use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+/// let q = |x, y, z| Vec3::<Q16_16>::from_f32([x, y, z]).unwrap();
+/// let v = [q(-1.0, -1.0, 0.0), q(1.0, -1.0, 0.0), q(0.0, 1.0, 0.0)];
+/// let faces = [Face::new(&[0, 1, 2], Rgb565::RED)];
+/// let mesh = Mesh::new(&v, &faces);
+/// let projection = Camera::<Q16_16>::perspective(1.0, 0.1, 20.0).unwrap();
+/// let camera = Camera::look_at([0.0, 0.0, 4.0], [0.0; 3], [0.0, 1.0, 0.0], projection).unwrap();
+/// let light = Light {
+///     direction: Vec3::from_f32([0.0, 0.0, 1.0]).unwrap(),
+///     ambient: Q16_16::from_f32(0.2).unwrap(),
+/// };
+/// let cfg = Config::model(64, 64);
+/// // Every frame of a turn, one per 0.1 rad.
+/// let mut worst = Requirements::default();
+/// for k in 0..63 {
+///     let transform = Affine::rotate_yx_translate(0.1 * k as f32, 0.0, [0.0; 3]).unwrap();
+///     let objects = [Object { mesh: &mesh, transform }];
+///     let scene = ModelScene { objects: &objects, camera, light };
+///     worst = worst.max(requirements(&scene, &cfg).unwrap());
+/// }
+/// let sized = worst.with_margin(10);
+/// assert!(sized.polygons > worst.polygons && sized.vertices >= 3);
+///
+/// // What the host printed, as a constant in the firmware: each capacity from its own field.
+/// const REQ: Requirements = Requirements {
+///     polygons: 2, edges: 4, vertices: 4, active_polygons: 2, width: 64,
+/// };
+/// type Renderer = scanline_for!(Q16_16, REQ);
+/// let renderer = Renderer::new();
+/// assert_eq!(Renderer::RAM_BYTES, core::mem::size_of_val(&renderer));
+/// ```
 ///
 /// ```
 /// use zrow::{requirements, Config, Face, Mesh, ScreenScene, Vec3};
