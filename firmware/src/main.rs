@@ -31,14 +31,14 @@ use stm32f4xx_hal::{
     rcc,
     spi::{Mode, Phase, Polarity},
 };
-use zrow::{Scanline, Q16_16};
+use zrow::Q16_16;
 
 /// System clock.
 const SYSCLK_HZ: u32 = 100_000_000;
-/// Renderer capacities for the demo scenes over a full turn (measured with
-/// `zrow::requirements`: the torus needs at most 462 polygons, 1,316 edges, 67 active;
-/// `crates/zrow-scenes/tests/demos.rs` checks every demo fits).
-type Renderer = Scanline<Q16_16, 240, 1344, 480, 72>;
+/// The renderer, sized to the demo scenes: what they need at most over a turn plus 5 %
+/// (`zrow_scenes::DEMO_REQUIREMENTS`, measured with `zrow::requirements`; the torus needs 463
+/// polygons, 500 vertices, 67 active; `crates/zrow-scenes/tests/demos.rs` checks it).
+type Renderer = zrow::scanline_for!(Q16_16, zrow_scenes::DEMO_REQUIREMENTS);
 
 static RENDERER: ConstStaticCell<Renderer> = ConstStaticCell::new(Renderer::new());
 static ROW_A: ConstStaticCell<[u8; ROW_BYTES]> = ConstStaticCell::new([0; ROW_BYTES]);

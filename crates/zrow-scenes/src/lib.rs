@@ -66,6 +66,21 @@ pub const FOLEY: [&str; 2] = ["foley100", "foley2500"];
 /// The demo scenes, in the order the simulator and the board show them.
 pub const DEMOS: [&str; 3] = ["interlocked", "cube", "mesh1k"];
 
+/// What the demo scenes need at most (Q16.16, 240×240, [`with_demo`]), measured over 2,048
+/// angles of a turn and the board's first 3,000 frames (0.03 rad each): mesh1k's 463
+/// polygons, 500 vertices and 67 active polygons (`tests/demos.rs` measures it again).
+pub const DEMO_MEASURED: zrow::Requirements = zrow::Requirements {
+    polygons: 463,
+    edges: 1316,
+    vertices: 500,
+    active_polygons: 67,
+    width: SIZE,
+};
+
+/// The board's renderer capacities: [`DEMO_MEASURED`] plus 5 % for the angles between the
+/// measured ones (`zrow::scanline_for!(Q16_16, DEMO_REQUIREMENTS)`).
+pub const DEMO_REQUIREMENTS: zrow::Requirements = DEMO_MEASURED.with_margin(5);
+
 /// Frame size of every standard scene.
 pub const SIZE: u16 = 240;
 

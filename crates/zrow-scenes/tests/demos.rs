@@ -5,24 +5,35 @@ use zrow::{requirements, Requirements, Scanline, Q16_16};
 
 #[test]
 fn demos_fit_the_board_renderer_over_a_full_turn() {
+    let mut all = Requirements::default();
     for name in zrow_scenes::DEMOS {
         let mut worst = Requirements::default();
-        for k in 0..64 {
-            let angle = k as f32 * core::f32::consts::TAU / 64.0;
-            let req = zrow_scenes::with_scene::<Q16_16, _>(name, angle, |scene, cfg, _| {
+        // A turn, and the board's own angles (0.03 rad a frame) over its first frames.
+        let angles = (0..256)
+            .map(|k| k as f32 * core::f32::consts::TAU / 256.0)
+            .chain((0..400).map(|f| f as f32 * 0.03));
+        for angle in angles {
+            let req = zrow_scenes::with_demo::<Q16_16, _>(name, angle, |scene, cfg, _| {
                 requirements(scene, cfg).unwrap()
             })
             .unwrap();
             worst = worst.max(req);
         }
-        // firmware/src/main.rs: Scanline<Q16_16, 240, 1344, 480, 72> (vertex buffer,
-        // polygons, active list).
-        assert!(
-            worst.vertices <= 1344 && worst.polygons <= 480 && worst.active_polygons <= 72,
-            "{name}: {worst:?}"
-        );
         assert!(worst.polygons > 0, "{name} draws nothing");
+        all = all.max(worst);
     }
+    // Within what was measured over 2,048 angles (and the mesh's own 500 vertices exactly).
+    let m = zrow_scenes::DEMO_MEASURED;
+    assert!(
+        all.polygons <= m.polygons
+            && all.edges <= m.edges
+            && all.active_polygons <= m.active_polygons
+            && all.vertices == m.vertices,
+        "{all:?} vs {m:?}"
+    );
+    // The firmware's renderer: zrow::scanline_for!(Q16_16, DEMO_REQUIREMENTS).
+    let r = zrow_scenes::DEMO_REQUIREMENTS;
+    assert!(r.polygons > m.polygons && r.active_polygons > m.active_polygons);
 }
 
 #[test]
