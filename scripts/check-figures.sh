@@ -30,8 +30,16 @@ expect() { # what, text that must be in the README
 out="$(bash scripts/firmware-size.sh 2>&1 | grep '^firmware: flash')"
 flash="$(echo "$out" | sed -E 's/^firmware: flash ([0-9]+) bytes.*/\1/')"
 ram="$(echo "$out" | sed -E 's/.*static RAM ([0-9]+) bytes.*/\1/')"
-# Flash in KB to a tenth (its exact bytes move with the checkout's path, in panic messages).
-expect "firmware flash" "at this commit $(awk -v f="$flash" 'BEGIN { printf "%.1f", f / 1024 }') KB of"
+# Flash in KB to a tenth, within 0.3 KB: its exact bytes move with the checkout's path, which
+# the panic locations of the crates outside the firmware's workspace carry (a clone in /tmp/ci
+# measured 0.1 KB less than one in /work/main).
+quoted="$(sed -nE 's/.*at this commit ([0-9]+\.[0-9]) KB of.*/\1/p' "$readme" | head -1)"
+if [ -n "$quoted" ] && awk -v q="$quoted" -v f="$flash" 'BEGIN { d = q - f / 1024; exit !(d <= 0.3 && d >= -0.3) }'; then
+  echo "check-figures: firmware flash: \"$quoted KB\" is within 0.3 KB of $flash bytes"
+else
+  echo "check-figures: firmware flash: the README says \"${quoted:-nothing}\" KB, measured $(awk -v f="$flash" 'BEGIN { printf "%.1f", f / 1024 }') KB; update it" >&2
+  fail=1
+fi
 expect "firmware static RAM" "$(thousands "$ram") bytes of static RAM"
 
 # Bytes on the wire per demo frame, whole and changed rows only (the README's table, as the
