@@ -213,9 +213,10 @@ class Board:
                 if label in ("DC", "CS") and self.time < self.spi_free_at:
                     self.errors.append(f"{label} changed at cycle {self.time} while SPI1 was still "
                                        f"shifting out bytes (until cycle {self.spi_free_at})")
-                if label == "RST":
+                if label in ("RST", "BL"):
                     self.flush()
-                    self.out.write(f"t {self.time * 1_000_000_000 // HCLK}\nr {new >> pin & 1}\n")
+                    record = "r" if label == "RST" else "b"
+                    self.out.write(f"t {self.time * 1_000_000_000 // HCLK}\n{record} {new >> pin & 1}\n")
         self.odr = new
 
     # --- registers ----------------------------------------------------------------------------

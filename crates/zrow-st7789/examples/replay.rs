@@ -8,14 +8,15 @@
 //! ```
 //!
 //! The stream's lines: `fps N` (frames per demo scene), `t NS` (the time the next bytes start),
-//! `c HEX` (bytes sent with DC low), `d HEX` (DC high), `r LEVEL` (the reset pin),
+//! `c HEX` (bytes sent with DC low), `d HEX` (DC high), `r LEVEL` (the reset pin), `b LEVEL`
+//! (the backlight),
 //! `f FRAME CYCLES WAITED` (frame `FRAME` is on the panel, `CYCLES` after the previous one, of
 //! which the firmware spent `WAITED` waiting for the SPI or its DMA: the sending rendering did
 //! not hide). Frame `k` is demo scene `DEMOS[(k / N) % 3]` at angle `0.03·k`, as the firmware
 //! draws it.
 //!
-//! Exits non-zero on a frame that differs, a protocol error the model saw, a panel left asleep,
-//! off or not inverted, or a malformed stream.
+//! Exits non-zero on a frame that differs, a frame shown with the backlight off, a protocol
+//! error the model saw, a panel left asleep, off or not inverted, or a malformed stream.
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use std::process::ExitCode;
@@ -55,6 +56,7 @@ fn main() -> ExitCode {
         .map(|&n| (n, Scene::default()))
         .collect();
     let (mut failures, mut checked, mut bytes_at_mark) = (0u32, 0u32, 0u64);
+    let mut backlight = false;
     for (n, line) in text.lines().enumerate() {
         let bad = |why: &str| {
             eprintln!("replay: {path}:{}: {why}: {line}", n + 1);
@@ -76,6 +78,7 @@ fn main() -> ExitCode {
                 None => return bad("hex bytes"),
             },
             "r" => {}
+            "b" => backlight = rest == "1",
             "f" => {
                 let mut it = rest.split(' ').map(str::parse::<u64>);
                 let (Some(Ok(frame)), Some(Ok(cycles)), Some(Ok(waited))) =
@@ -96,6 +99,10 @@ fn main() -> ExitCode {
                 let wrong = got.iter().zip(&want).filter(|(g, w)| g != w).count();
                 if wrong > 0 {
                     eprintln!("replay: frame {frame} ({name}): {wrong} pixels differ from the host's render");
+                    failures += 1;
+                }
+                if !backlight {
+                    eprintln!("replay: frame {frame} ({name}) shown with the backlight off");
                     failures += 1;
                 }
                 checked += 1;
