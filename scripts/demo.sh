@@ -10,4 +10,7 @@ if ! [ -e /usr/include/SDL2/SDL.h ]; then
   $sudo_ apt-get update -qq
   $sudo_ env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libsdl2-dev
 fi
-exec cargo run --release -p zrow-sim --features window -- "$@"
+# Its own target directory: the window build turns on features the headless commands leave
+# off, and sharing one directory would rebuild the simulator at every switch between them.
+exec env CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-target/window}" \
+  cargo run --release -p zrow-sim --features window -- "$@"

@@ -14,7 +14,7 @@
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use zrow::{
     requirements, Affine, Camera, Config, Face, FrameBuffer, Light, Mesh, ModelScene, Object,
-    Requirements, Scalar, Scanline, Vec3, Q16_16,
+    Projection, Requirements, Scalar, Scanline, Vec3, Q16_16,
 };
 
 const SIZE: u16 = 120;
@@ -79,7 +79,7 @@ fn draw<N: Scalar>() -> Vec<Frame> {
         .map(|f| Face::new(f, Rgb565::new(6, 44, 31)))
         .collect();
     let (cube, pyramid) = (Mesh::new(&cube_v, &cube_f), Mesh::new(&pyr_v, &pyr_f));
-    let projection = Camera::<N>::perspective(1.0, 0.1, 20.0).unwrap();
+    let projection = Projection::<N>::perspective(1.0, 0.1, 20.0).unwrap();
     let camera = Camera::look_at([1.8, 1.4, 2.6], [0.0; 3], [0.0, 1.0, 0.0], projection).unwrap();
     let light = Light {
         direction: Vec3::from_f32([0.4, 1.0, 0.7]).unwrap(),

@@ -94,7 +94,7 @@ const ROWS_PER_PASS: usize = 256;
 /// let v = [q(-1.0, -1.0, 0.0), q(1.0, -1.0, 0.0), q(0.0, 1.0, 0.0)];
 /// let faces = [Face::new(&[0, 1, 2], Rgb565::RED)];
 /// let mesh = Mesh::new(&v, &faces);
-/// let projection = Camera::<Q16_16>::perspective(1.0, 0.1, 20.0).unwrap();
+/// let projection = zrow::Projection::<Q16_16>::perspective(1.0, 0.1, 20.0).unwrap();
 /// let camera = Camera::look_at([0.0, 0.0, 4.0], [0.0; 3], [0.0, 1.0, 0.0], projection).unwrap();
 /// let light = Light {
 ///     direction: Vec3::from_f32([0.0, 0.0, 1.0]).unwrap(),

@@ -241,22 +241,57 @@ impl<N: Scalar> Camera<N> {
         Some(Camera { view, projection })
     }
 
-    /// A perspective projection from a vertical field of view in radians (tangent by libm;
-    /// [`Camera::perspective_with`] takes micromath's, cheaper and about 1 % off).
+    /// The same as [`Projection::perspective`] (a projection, for [`Camera::look_at`]).
     pub fn perspective(fov_y: f32, near: f32, far: f32) -> Option<Projection<N>> {
-        Self::perspective_with(crate::math::MathLib::Libm, fov_y, near, far)
+        Projection::perspective(fov_y, near, far)
     }
 
-    /// [`Camera::perspective`] with the tangent from `math`.
+    /// The same as [`Projection::perspective_with`].
     pub fn perspective_with(
         math: crate::math::MathLib,
         fov_y: f32,
         near: f32,
         far: f32,
     ) -> Option<Projection<N>> {
+        Projection::perspective_with(math, fov_y, near, far)
+    }
+}
+
+impl<N: Scalar> Projection<N> {
+    /// A perspective projection from a vertical field of view in radians (tangent by libm;
+    /// [`Projection::perspective_with`] takes micromath's, cheaper and about 1 % off). `None`
+    /// if a value does not fit the number format.
+    ///
+    /// ```
+    /// use zrow::{Camera, Projection, Q16_16};
+    /// let p = Projection::<Q16_16>::perspective(1.0, 0.1, 20.0).unwrap();
+    /// let camera = Camera::look_at([0.0, 0.0, 4.0], [0.0; 3], [0.0, 1.0, 0.0], p).unwrap();
+    /// assert_eq!(camera.projection, p);
+    /// ```
+    pub fn perspective(fov_y: f32, near: f32, far: f32) -> Option<Self> {
+        Self::perspective_with(crate::math::MathLib::Libm, fov_y, near, far)
+    }
+
+    /// [`Projection::perspective`] with the tangent from `math`.
+    pub fn perspective_with(
+        math: crate::math::MathLib,
+        fov_y: f32,
+        near: f32,
+        far: f32,
+    ) -> Option<Self> {
         let focal = 1.0 / math.tan(fov_y * 0.5);
         Some(Projection::Perspective {
             focal: N::from_f32(focal)?,
+            near: N::from_f32(near)?,
+            far: N::from_f32(far)?,
+        })
+    }
+
+    /// An orthographic projection showing `half_height` world units above and below the
+    /// screen's centre. `None` if a value does not fit the number format.
+    pub fn orthographic(half_height: f32, near: f32, far: f32) -> Option<Self> {
+        Some(Projection::Orthographic {
+            half_height: N::from_f32(half_height)?,
             near: N::from_f32(near)?,
             far: N::from_f32(far)?,
         })
