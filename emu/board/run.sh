@@ -25,13 +25,17 @@ frames=$((3 * per_scene))
 out="$root/target/board"
 mkdir -p "$out"
 
-if ! python3 -m venv --help >/dev/null 2>&1 || ! python3 -c 'import ensurepip' 2>/dev/null; then
-  sudo_="$( [ "$(id -u)" = 0 ] || echo sudo )"
-  $sudo_ apt-get update -qq && $sudo_ apt-get install -y -qq python3-venv >/dev/null
-fi
 venv="$here/.venv"
 if ! "$venv/bin/python" -c 'import unicorn, capstone, elftools' 2>/dev/null; then
-  python3 -m venv "$venv"
+  rm -rf "$venv"
+  # Debian's python3 makes venvs only with python3-venv installed (ensurepip's wheels).
+  if ! python3 -m venv "$venv" >/dev/null 2>&1; then
+    sudo_="$( [ "$(id -u)" = 0 ] || echo sudo )"
+    $sudo_ apt-get update -qq
+    $sudo_ env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq python3-venv >/dev/null
+    rm -rf "$venv"
+    python3 -m venv "$venv"
+  fi
   "$venv/bin/pip" install --quiet --disable-pip-version-check \
     unicorn==2.1.4 capstone==5.0.7 pyelftools==0.33
 fi
