@@ -14,7 +14,8 @@
 #
 # usage: emu/board/run.sh [FRAMES_PER_SCENE]   (default 3: 9 frames, the three demo scenes)
 # Writes target/board/: the stream files, shipped.txt (the table), the mutants' logs.
-# Installs python3-venv with apt-get if missing, and Unicorn, capstone and pyelftools (pinned)
+# Installs python3 and python3-venv with apt-get if missing, and Unicorn, capstone and
+# pyelftools (pinned)
 # into emu/board/.venv from PyPI.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -25,12 +26,16 @@ frames=$((3 * per_scene))
 out="$root/target/board"
 mkdir -p "$out"
 
+sudo_="$( [ "$(id -u)" = 0 ] || echo sudo )"
+if ! command -v python3 >/dev/null 2>&1; then
+  $sudo_ apt-get update -qq
+  $sudo_ env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq python3 python3-venv >/dev/null
+fi
 venv="$here/.venv"
 if ! "$venv/bin/python" -c 'import unicorn, capstone, elftools' 2>/dev/null; then
   rm -rf "$venv"
   # Debian's python3 makes venvs only with python3-venv installed (ensurepip's wheels).
   if ! python3 -m venv "$venv" >/dev/null 2>&1; then
-    sudo_="$( [ "$(id -u)" = 0 ] || echo sudo )"
     $sudo_ apt-get update -qq
     $sudo_ env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq python3-venv >/dev/null
     rm -rf "$venv"
