@@ -172,6 +172,10 @@ pub fn mesh<N: Format>(name: &str) -> Option<Mesh<'static, N>> {
         "foley100" => (N::foley100(), &meshes::FOLEY100_FACES),
         "foley2500" => (N::foley2500(), &meshes::FOLEY2500_FACES),
         "ring" => (N::ring(), &meshes::RING_FACES),
+        // The interlocked demo's objects: one colour each.
+        "ring-warm" => (N::ring(), &meshes::RING_WARM_FACES),
+        "ring-cool" => (N::ring(), &meshes::RING_COOL_FACES),
+        "cube-plain" => (N::cube(), &meshes::CUBE_PLAIN_FACES),
         _ => return None,
     };
     Some(Mesh::new(vertices, faces))
@@ -303,25 +307,30 @@ fn model<N: Format, R>(
     Some(f(&scene, &Config::model(SIZE, SIZE), faces))
 }
 
-/// Two rings linked through each other and a small cube through both, turning by `angle`.
+/// Two rings linked through each other and a cube through both, turning by `angle`: one lit
+/// colour per object (a warm ring, a cool ring, a pale cube), scaled by [`INTERLOCKED_SCALE`]
+/// to fill most of the view.
 fn interlocked<N: Format, R>(
     angle: f32,
     math: MathLib,
     f: impl FnOnce(&dyn Scene<N>, &Config, usize) -> R,
 ) -> Option<R> {
-    let ring = Mesh::new(N::ring(), &meshes::RING_FACES);
-    let cube = Mesh::new(N::cube(), &meshes::CUBE_FACES);
+    let warm = Mesh::new(N::ring(), &meshes::RING_WARM_FACES);
+    let cool = Mesh::new(N::ring(), &meshes::RING_COOL_FACES);
+    let cube = Mesh::new(N::cube(), &meshes::CUBE_PLAIN_FACES);
     // Ring A lies flat, ring B stands up through A's hole; the cube sits where they cross.
     let turn =
         |yaw: f32, pitch: f32, t: [f32; 3]| Affine::rotate_yx_translate_with(math, yaw, pitch, t);
-    let spin = turn(angle, 0.3, [0.0; 3])?;
+    let s = INTERLOCKED_SCALE;
+    let grow = Affine::from_f32([[s, 0.0, 0.0, 0.0], [0.0, s, 0.0, 0.0], [0.0, 0.0, s, 0.0]])?;
+    let spin = grow.then_after(&turn(angle, 0.3, [0.0; 3])?);
     let objects = [
         Object {
-            mesh: &ring,
+            mesh: &warm,
             transform: spin.then_after(&turn(0.0, 0.0, [-0.35, 0.0, 0.0])?),
         },
         Object {
-            mesh: &ring,
+            mesh: &cool,
             transform: spin.then_after(&turn(0.0, core::f32::consts::FRAC_PI_2, [0.35, 0.0, 0.0])?),
         },
         Object {
@@ -334,9 +343,13 @@ fn interlocked<N: Format, R>(
         camera: camera_with(math)?,
         light: light()?,
     };
-    let faces = 2 * ring.faces.len() + cube.faces.len();
+    let faces = warm.faces.len() + cool.faces.len() + cube.faces.len();
     Some(f(&scene, &Config::model(SIZE, SIZE), faces))
 }
+
+/// How much the interlocked demo is scaled up (its rings are 1.9 units across): to fill most
+/// of the 240 × 240 view from the model scenes' camera.
+pub const INTERLOCKED_SCALE: f32 = 1.5;
 
 /// The colour of `Rgb565` pixels as the little-endian `u16` words the frame hash reads.
 pub fn raw(c: Rgb565) -> u16 {

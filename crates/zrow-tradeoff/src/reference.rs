@@ -150,14 +150,16 @@ pub fn objects(name: &str) -> Option<Vec<Obj<'static>>> {
         }],
         // zrow_scenes' `interlocked` at angle 0.
         "interlocked" => {
-            let spin = t(0.0, 0.3, [0.0; 3]);
+            let g = zrow_scenes::INTERLOCKED_SCALE as f64;
+            let grow = Aff([[g, 0.0, 0.0, 0.0], [0.0, g, 0.0, 0.0], [0.0, 0.0, g, 0.0]]);
+            let spin = grow.then_after(&t(0.0, 0.3, [0.0; 3]));
             vec![
                 Obj {
-                    mesh: mesh("ring")?,
+                    mesh: mesh("ring-warm")?,
                     transform: spin.then_after(&t(0.0, 0.0, [-0.35, 0.0, 0.0])),
                 },
                 Obj {
-                    mesh: mesh("ring")?,
+                    mesh: mesh("ring-cool")?,
                     transform: spin.then_after(&t(
                         0.0,
                         std::f64::consts::FRAC_PI_2,
@@ -165,7 +167,7 @@ pub fn objects(name: &str) -> Option<Vec<Obj<'static>>> {
                     )),
                 },
                 Obj {
-                    mesh: mesh("cube")?,
+                    mesh: mesh("cube-plain")?,
                     transform: spin.then_after(&t(0.0, 0.6, [0.0; 3])),
                 },
             ]
