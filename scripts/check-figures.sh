@@ -56,7 +56,7 @@ sink() { grep "^# board sink, mesh1k: $1" emu/target/bench-m4.txt | sed -E 's/.*
 encode="$(sink "encoding 240 rows for")"
 signed="$(sink "encoding 240 rows and")"
 expect "board sink, encoding" "takes $(thousands "$encode") instructions"
-expect "board sink, signatures" "signatures $(thousands $((signed - encode))) more (about $(awk -v d=$((signed - encode)) 'BEGIN { printf "%.1f", d / 1e5 }') ms"
+expect "board sink, signatures" "$(thousands $((signed - encode))) more (about $(awk -v d=$((signed - encode)) 'BEGIN { printf "%.1f", d / 1e5 }') ms"
 
 # The board in the loop's table (emu/board/run.sh, which CI runs first, keeps it).
 board=target/board/shipped.txt

@@ -105,7 +105,7 @@ PY
 mutant dc-polarity src/dma_rows.rs \
   'let _ = self.dc.set_low();=>let _ = self.dc.set_high();'
 mutant half-row src/dma_rows.rs \
-  'let n = encode_row(row.color, spare);=>let n = encode_row(row.color, spare); encode_row(&[zrow::pixelcolor::Rgb565::new(0, 0, 0); 120], &mut spare[240..]);'
+  'let (_, signature) = encode_row_signed(row.color, spare);=>let (_, signature) = encode_row_signed(row.color, spare); zrow_st7789::encode_row(&[zrow::pixelcolor::Rgb565::new(0, 0, 0); 120], &mut spare[240..]);'
 mutant no-inversion src/main.rs \
   '.invert_colors(ColorInversion::Inverted)=>'
 exit "$fail"

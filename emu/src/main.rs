@@ -103,9 +103,10 @@ fn hash_alone() {
 }
 
 /// The board's sink work on a mesh1k frame (Q16.16, angle 0), between the markers: each of its
-/// 240 rows encoded for the panel (`zrow_st7789::encode_row`) and, with `coherent`, its
-/// signature compared with the last frame's (`zrow_st7789::Coherence::row`, after a first frame
-/// that recorded them, so this frame's rows are all unchanged). The frame is rendered into
+/// 240 rows encoded for the panel (`zrow_st7789::encode_row`) or, with `coherent`, encoded and
+/// signed in one pass (`encode_row_signed`, the firmware's way) and the signature compared with
+/// the last frame's (`Coherence::row_signed`, after a first frame that recorded them, so this
+/// frame's rows are all unchanged). The frame is rendered into
 /// memory first, outside the markers. Returns the rows the coherent sender would send.
 fn board_sink(coherent: bool) -> u32 {
     let mut frame = [[Rgb565::BLACK; 240]; 240];
@@ -122,9 +123,13 @@ fn board_sink(coherent: bool) -> u32 {
     let record = |coherence: &mut zrow_st7789::Coherence<240>, line: &mut [u8; 480]| {
         let mut sent = 0;
         for (y, row) in frame.iter().enumerate() {
-            let n = zrow_st7789::encode_row(black_box(row), line);
-            if coherent && coherence.row(y as u16, &line[..n]) != zrow_st7789::RowAction::Skip {
-                sent += 1;
+            if coherent {
+                let (_, signature) = zrow_st7789::encode_row_signed(black_box(row), line);
+                if coherence.row_signed(y as u16, signature) != zrow_st7789::RowAction::Skip {
+                    sent += 1;
+                }
+            } else {
+                zrow_st7789::encode_row(black_box(row), line);
             }
             black_box(&line);
         }

@@ -22,7 +22,7 @@ use stm32f4xx_hal::pac::{self, DMA2, SPI1};
 use stm32f4xx_hal::spi::Tx;
 use zrow::{Row, RowSink};
 use zrow_st7789::coherence::{open_run, Coherence, RowAction};
-use zrow_st7789::{encode_row, Window};
+use zrow_st7789::{encode_row_signed, Window};
 
 /// Bytes in one row (240 RGB565 pixels).
 pub const ROW_BYTES: usize = 480;
@@ -123,8 +123,8 @@ impl<N, DC: OutputPin> RowSink<N> for DmaRows<DC> {
         let mut waited = 0u32;
         self.state = match core::mem::replace(&mut self.state, State::Switching) {
             State::Idle(stream, tx, a, b) => {
-                let n = encode_row(row.color, a);
-                match self.coherence.row(row.y, &a[..n]) {
+                let (_, signature) = encode_row_signed(row.color, a);
+                match self.coherence.row_signed(row.y, signature) {
                     RowAction::Skip => State::Idle(stream, tx, a, b),
                     // Nothing is open before the first transfer: always a new run.
                     RowAction::Continue | RowAction::Open { .. } => {
@@ -146,8 +146,8 @@ impl<N, DC: OutputPin> RowSink<N> for DmaRows<DC> {
                 }
             }
             State::Running(mut t, spare) => {
-                let n = encode_row(row.color, spare);
-                let action = self.coherence.row(row.y, &spare[..n]);
+                let (_, signature) = encode_row_signed(row.color, spare);
+                let action = self.coherence.row_signed(row.y, signature);
                 if action == RowAction::Skip {
                     State::Running(t, spare)
                 } else {

@@ -99,25 +99,48 @@ pub fn open_run<E>(
 /// assert_ne!(row_signature(&a), row_signature(&b));
 /// ```
 pub fn row_signature(bytes: &[u8]) -> u32 {
-    const K: u32 = 0x9E37_79B1;
-    let mut h = bytes.len() as u32;
+    let mut h = Signature::new(bytes.len());
     let mut words = bytes.chunks_exact(4);
     for w in &mut words {
-        let w = u32::from_le_bytes([w[0], w[1], w[2], w[3]]);
-        h = (h.rotate_left(5) ^ w).wrapping_mul(K);
+        h.mix(u32::from_le_bytes([w[0], w[1], w[2], w[3]]));
     }
     let rest = words.remainder();
     if !rest.is_empty() {
         let mut w = [0u8; 4];
         w[..rest.len()].copy_from_slice(rest);
-        h = (h.rotate_left(5) ^ u32::from_le_bytes(w)).wrapping_mul(K);
+        h.mix(u32::from_le_bytes(w));
     }
-    // Murmur3's finaliser: spreads every bit of h over the result (a bijection too).
-    h ^= h >> 16;
-    h = h.wrapping_mul(0x85EB_CA6B);
-    h ^= h >> 13;
-    h = h.wrapping_mul(0xC2B2_AE35);
-    h ^ (h >> 16)
+    h.finish()
+}
+
+/// [`row_signature`] as it goes: started with the row's length in bytes, fed its bytes as
+/// little-endian words (a short last word padded with zeros), finished once. Lets
+/// [`crate::encode_row_signed`] sign a row while encoding it, in the same pass.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Signature(u32);
+
+impl Signature {
+    #[inline]
+    pub(crate) fn new(len: usize) -> Self {
+        Signature(len as u32)
+    }
+
+    #[inline]
+    pub(crate) fn mix(&mut self, word: u32) {
+        const K: u32 = 0x9E37_79B1;
+        self.0 = (self.0.rotate_left(5) ^ word).wrapping_mul(K);
+    }
+
+    /// Murmur3's finaliser: spreads every bit of the state over the result (a bijection too).
+    #[inline]
+    pub(crate) fn finish(self) -> u32 {
+        let mut h = self.0;
+        h ^= h >> 16;
+        h = h.wrapping_mul(0x85EB_CA6B);
+        h ^= h >> 13;
+        h = h.wrapping_mul(0xC2B2_AE35);
+        h ^ (h >> 16)
+    }
 }
 
 /// The signatures of the rows last sent to the panel, for `H` rows at most (the window's
@@ -203,6 +226,12 @@ impl<const H: usize> Coherence<H> {
     /// past `H` is always sent, with its own window (`Open`): nothing is recorded for it.
     /// If sending what this returns fails, call [`Self::forget`].
     pub fn row(&mut self, y: u16, bytes: &[u8]) -> RowAction {
+        self.row_signed(y, row_signature(bytes))
+    }
+
+    /// [`Self::row`] for a row whose signature is already known: [`row_signature`] of its
+    /// encoded bytes, as [`crate::encode_row_signed`] gives it in the encoding pass.
+    pub fn row_signed(&mut self, y: u16, signature: u32) -> RowAction {
         if y == 0 {
             self.since_whole = self.since_whole.wrapping_add(1);
             let refresh = self.refresh != 0 && self.since_whole >= self.refresh;
@@ -214,7 +243,6 @@ impl<const H: usize> Coherence<H> {
             self.next = None;
             self.caset_sent = false;
         }
-        let signature = row_signature(bytes);
         let changed = match self.signatures.get_mut(y as usize) {
             Some(s) => {
                 let changed = self.whole || *s != signature;
@@ -355,8 +383,8 @@ impl<N, SPI: SpiDevice, DC: OutputPin, const B: usize, const H: usize> RowSink<N
     /// Checks the row's place and length, encodes it, and sends it only if it changed (with
     /// the window first after a gap). On a bus error the next frame goes whole.
     fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), Self::Error> {
-        let n = self.rows.take_row(row)?;
-        let action = self.coherence.row(row.y, &self.rows.line[..n]);
+        let (n, signature) = self.rows.take_row_signed(row)?;
+        let action = self.coherence.row_signed(row.y, signature);
         if action != RowAction::Skip {
             if let Err(e) = self.send(action, n) {
                 self.coherence.forget();

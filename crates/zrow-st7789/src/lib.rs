@@ -69,4 +69,6 @@ pub mod rows;
 pub use coherence::{Coherence, CoherentRows, RowAction};
 pub use command::{init, init_sequence, send_command, InitStep, INIT_SEQUENCE};
 pub use error::{Error, StreamError};
-pub use rows::{encode_row, line_bytes, St7789Rows, Window, PANEL_HEIGHT, PANEL_WIDTH};
+pub use rows::{
+    encode_row, encode_row_signed, line_bytes, St7789Rows, Window, PANEL_HEIGHT, PANEL_WIDTH,
+};

@@ -2,6 +2,7 @@
 //! big-endian RGB565 bytes; and [`encode_row`], the same encoding as a pure function for
 //! firmware that sends rows by DMA from two buffers of its own.
 
+use crate::coherence::Signature;
 use crate::command;
 use crate::{Error, StreamError};
 use embedded_graphics_core::pixelcolor::{IntoStorage, Rgb565};
@@ -142,18 +143,61 @@ const fn span(start: u16, len: u16) -> [u8; 4] {
 /// assert_eq!((n, out), (4, [0xF8, 0x00, 0x00, 0x1F]));
 /// ```
 pub fn encode_row(row: &[Rgb565], out: &mut [u8]) -> usize {
+    encode_with(row, out, |_| {})
+}
+
+/// [`encode_row`] and the row's [`row_signature`](crate::coherence::row_signature) of the bytes
+/// written, in one pass (what a sender of changed rows only needs; cheaper than encoding, then
+/// reading the bytes again to sign them).
+///
+/// ```
+/// use embedded_graphics_core::pixelcolor::Rgb565;
+/// use zrow_st7789::{coherence::row_signature, encode_row_signed};
+/// let row = [Rgb565::new(31, 0, 0), Rgb565::new(0, 63, 0), Rgb565::new(0, 0, 31)];
+/// let mut out = [0u8; 6];
+/// let (n, signature) = encode_row_signed(&row, &mut out);
+/// assert_eq!((n, signature), (6, row_signature(&out)));
+/// ```
+pub fn encode_row_signed(row: &[Rgb565], out: &mut [u8]) -> (usize, u32) {
+    let n = row.len().min(out.len() / 2);
+    let mut signature = Signature::new(2 * n);
+    encode_with(row, out, |word| signature.mix(word));
+    (2 * n, signature.finish())
+}
+
+/// Encodes as many whole pixels of `row` as fit in `out`, two a word, handing each word (the
+/// bytes as a little-endian `u32`, a last lone pixel padded with zeros) to `word`.
+#[inline(always)]
+fn encode_with(row: &[Rgb565], out: &mut [u8], mut word: impl FnMut(u32)) -> usize {
     let n = row.len().min(out.len() / 2);
     let (row, out) = (&row[..n], &mut out[..2 * n]);
-    // Two pixels a word: both byte-swapped at once (one `rev16` on a Cortex-M).
+    // Two pixels a word: both byte-swapped at once (one `rev16` on a Cortex-M); two words an
+    // iteration (fewer loop steps, and the signature's constant stays in a register).
+    let swap = |p: &[Rgb565]| {
+        let x = u32::from(p[0].into_storage()) | u32::from(p[1].into_storage()) << 16;
+        ((x & 0x00FF_00FF) << 8) | ((x >> 8) & 0x00FF_00FF)
+    };
+    let mut quads = row.chunks_exact(4);
+    let mut eights = out.chunks_exact_mut(8);
+    for (p, w) in (&mut quads).zip(&mut eights) {
+        let (a, b) = (swap(&p[..2]), swap(&p[2..]));
+        w[..4].copy_from_slice(&a.to_le_bytes());
+        w[4..].copy_from_slice(&b.to_le_bytes());
+        word(a);
+        word(b);
+    }
+    let (row, out) = (quads.remainder(), eights.into_remainder());
     let mut pairs = row.chunks_exact(2);
     let mut words = out.chunks_exact_mut(4);
     for (p, w) in (&mut pairs).zip(&mut words) {
-        let x = u32::from(p[0].into_storage()) | u32::from(p[1].into_storage()) << 16;
-        let x = ((x & 0x00FF_00FF) << 8) | ((x >> 8) & 0x00FF_00FF);
+        let x = swap(p);
         w.copy_from_slice(&x.to_le_bytes());
+        word(x);
     }
     if let ([px], last) = (pairs.remainder(), words.into_remainder()) {
-        last.copy_from_slice(&px.into_storage().to_be_bytes());
+        let bytes = px.into_storage().to_be_bytes();
+        last.copy_from_slice(&bytes);
+        word(u32::from_le_bytes([bytes[0], bytes[1], 0, 0]));
     }
     2 * n
 }
@@ -258,6 +302,13 @@ impl<SPI, DC, const B: usize> St7789Rows<SPI, DC, B> {
     /// Checks that `row` is the one due and as wide as the window, encodes it into the line
     /// buffer: the bytes to send are `line[..n]`. [`Self::row_done`] moves on once it is sent.
     pub(crate) fn take_row<N>(&mut self, row: &Row<'_, N>) -> Result<usize, StreamError> {
+        self.check_row(row)?;
+        // `new` checked B >= 2 * width, so the whole row fits.
+        Ok(encode_row(row.color, &mut self.line))
+    }
+
+    /// Checks that `row` is the one due and as wide as the window.
+    fn check_row<N>(&self, row: &Row<'_, N>) -> Result<(), StreamError> {
         let expected = self.next_row.ok_or(StreamError::NoFrame)?;
         if row.y != expected {
             return Err(StreamError::OutOfOrder {
@@ -272,8 +323,16 @@ impl<SPI, DC, const B: usize> St7789Rows<SPI, DC, B> {
                 got: u32::try_from(row.color.len()).unwrap_or(u32::MAX),
             });
         }
-        // `new` checked B >= 2 * width, so the whole row fits.
-        Ok(encode_row(row.color, &mut self.line))
+        Ok(())
+    }
+
+    /// [`Self::take_row`], with the row's signature computed while encoding.
+    pub(crate) fn take_row_signed<N>(
+        &mut self,
+        row: &Row<'_, N>,
+    ) -> Result<(usize, u32), StreamError> {
+        self.check_row(row)?;
+        Ok(encode_row_signed(row.color, &mut self.line))
     }
 
     /// The row due has been dealt with: the next one is due (none after the window's last).

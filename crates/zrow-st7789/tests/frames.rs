@@ -96,8 +96,9 @@ fn consecutive_frames() {
     }
 }
 
-/// `encode_row` (two pixels a word) against the plain definition, pixel by pixel: every
-/// length from 0 to 9 pixels, buffers too short, exactly long enough and longer.
+/// `encode_row` (two pixels a word) against the plain definition, pixel by pixel, and
+/// `encode_row_signed` against it and `row_signature`: every length from 0 to 9 pixels,
+/// buffers too short, exactly long enough and longer.
 #[test]
 fn encode_row_is_big_endian_rgb565_pixel_by_pixel() {
     use embedded_graphics_core::pixelcolor::IntoStorage;
@@ -130,6 +131,15 @@ fn encode_row_is_big_endian_rgb565_pixel_by_pixel() {
                 );
             }
             assert!(out[n..].iter().all(|&b| b == 0xAA), "wrote past {n}");
+            // The same bytes with the signature of what was written, in one pass.
+            let mut signed = vec![0xAAu8; cap];
+            let (m, signature) = zrow_st7789::encode_row_signed(row, &mut signed);
+            assert_eq!((m, &signed), (n, &out), "len {len} cap {cap}");
+            assert_eq!(
+                signature,
+                zrow_st7789::coherence::row_signature(&out[..n]),
+                "len {len} cap {cap}"
+            );
         }
     }
 }
