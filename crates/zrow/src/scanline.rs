@@ -20,7 +20,8 @@
 //!   left end, stepped down the edge by `dzdy + dzdx·Δx` — the textbook `(A/m + B)/C` (Foley, van Dam, Feiner & Hughes §15.6) with the
 //!   pixel steps the edge actually takes, so it equals the plane at every pixel centre.
 //!   Entries stay where they are; the row's order by left end is kept on four-byte keys (left
-//!   end, slot), nearly sorted from one row to the next;
+//!   end, slot), nearly sorted from one row to the next (sorted only for the rows that are
+//!   swept: a heavy row is resolved by depth, in any order);
 //! - **span coherence**: where one polygon is in front at both ends of its overlap with
 //!   another it is in front throughout (depths are linear in x, so their difference cannot
 //!   change sign in between). The row is filled from a *front* polygon with no per-pixel
@@ -560,7 +561,6 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 cursor += 1;
                 self.activate(i, y, cfg, want_depth);
             }
-            self.sort_active();
             // The whole row is unknown on the first row of a frame.
             let stale = if y == 0 {
                 (0, width as i32)
@@ -578,6 +578,11 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 stale,
                 fresh: (width as i32, 0),
             };
+            // A heavy row (see `resolve_row`) is resolved by depth over the active polygons in
+            // any order: only the sweep needs them by left end.
+            if self.cover <= HEAVY_COVER * width as i32 || self.row.cue {
+                self.sort_active();
+            }
             self.resolve_row(want_depth, stats);
             let depth: &[N] = if want_depth {
                 Cue::shade_row_if_perspective(
@@ -669,7 +674,9 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
     }
 
     /// Insertion sort of the keys (left end, then slot): the order barely changes from row to
-    /// row, and what moves are four-byte keys, compared as they are.
+    /// row, and what moves are four-byte keys, compared as they are. Run before every swept
+    /// row; a heavy row, resolved by depth, takes the active polygons in any order and skips
+    /// it (the next swept row sorts what has drifted meanwhile).
     #[inline(never)]
     fn sort_active(&mut self) {
         let sorted = &mut self.sorted[..];
