@@ -325,15 +325,16 @@ fn draw_with<N: Scalar + Send + Sync, S: Scene<N> + Sync + ?Sized, R: Renderer<N
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::model::{parse, LoadedModel, ModelFormat};
     use crate::model_render::{render_model_image, with_scene, View};
     use crate::render::Format;
     use zrow::Q16_16;
 
-    /// A torus of `2·nu·nv` triangles, as OFF text.
-    fn torus(nu: usize, nv: usize) -> LoadedModel {
+    /// A torus of `2·nu·nv` triangles, from OFF text, coloured by band (the window's tests
+    /// use it too).
+    pub(crate) fn torus(nu: usize, nv: usize) -> LoadedModel {
         let mut off = format!("OFF\n{} {} 0\n", nu * nv, 2 * nu * nv);
         for i in 0..nu {
             let a = std::f64::consts::TAU * i as f64 / nu as f64;

@@ -823,25 +823,7 @@ mod tests {
     /// renderers sized to it: the frame the command line draws, not a capacity error.
     #[test]
     fn a_model_beyond_the_window_capacities_still_draws() {
-        let (nu, nv) = (80, 40);
-        let mut off = format!("OFF\n{} {} 0\n", nu * nv, 2 * nu * nv);
-        for i in 0..nu {
-            let a = std::f64::consts::TAU * i as f64 / nu as f64;
-            for j in 0..nv {
-                let b = std::f64::consts::TAU * j as f64 / nv as f64;
-                let r = 1.0 + 0.35 * b.cos();
-                off += &format!("{} {} {}\n", r * a.cos(), 0.35 * b.sin(), r * a.sin());
-            }
-        }
-        for i in 0..nu {
-            for j in 0..nv {
-                let (p, q) = (i * nv + j, (i + 1) % nu * nv + j);
-                let (p1, q1) = (i * nv + (j + 1) % nv, (i + 1) % nu * nv + (j + 1) % nv);
-                off += &format!("3 {p} {p1} {q}\n3 {q} {p1} {q1}\n");
-            }
-        }
-        let format = crate::model::ModelFormat::Off;
-        let model = crate::model::parse("t.off", format, off.as_bytes(), Path::new(".")).unwrap();
+        let model = crate::bands::tests::torus(80, 40);
         let view = View {
             has_model: true,
             ..View::default()

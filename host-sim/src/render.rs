@@ -225,18 +225,9 @@ fn screen_scene<'a, N>(
 
 /// A zrow error, blamed on the line of the face it names.
 fn core_error(scene: &OffScene, error: zrow::Error) -> SimError {
-    use zrow::Error::*;
-    let face = match error {
-        IndexOutOfRange { face, .. }
-        | TooFewVertices { face }
-        | TooManyVertices { face }
-        | NonFinite { face }
-        | NotConvex { face } => Some(face),
-        _ => None,
-    };
     SimError::Scene {
         file: scene.file.clone(),
-        line: face.and_then(|f| scene.face_line(f)),
+        line: error.face().and_then(|f| scene.face_line(f)),
         error,
     }
 }

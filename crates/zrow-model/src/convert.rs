@@ -1219,28 +1219,17 @@ fn measure_all<N: Scalar + Send + Sync>(
     // The data the firmware will hold, normals included (model mode culls and shades with
     // them).
     let mesh = Mesh::with_normals(&verts, &zfaces, &norms);
-    let blame = |e: zrow::Error| {
-        use zrow::Error::*;
-        let face = match e {
-            IndexOutOfRange { face, .. }
-            | TooFewVertices { face }
-            | TooManyVertices { face }
-            | NonFinite { face }
-            | NotConvex { face } => Some(face),
-            _ => None,
-        };
-        match face {
-            Some(face) => model_error(
-                file,
-                faces.get(face as usize).and_then(|f| f.origin),
-                e.to_string(),
-            ),
-            None => Error::Scene {
-                file: file.to_owned(),
-                line: None,
-                error: e,
-            },
-        }
+    let blame = |e: zrow::Error| match e.face() {
+        Some(face) => model_error(
+            file,
+            faces.get(face as usize).and_then(|f| f.origin),
+            e.to_string(),
+        ),
+        None => Error::Scene {
+            file: file.to_owned(),
+            line: None,
+            error: e,
+        },
     };
     let d = f64::from(opts.distance);
     // One view: what it needs, and its eye distance range.
@@ -1515,47 +1504,38 @@ mod tests {
     fn slots_and_cores_change_nothing_measured() {
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/models/torus.off");
         let model = crate::model::load(std::path::Path::new(path)).unwrap();
-        let verts: Vec<Vec3<Q16_16>> = model
-            .positions
-            .iter()
-            .map(|p| Vec3::from_f32(*p).unwrap())
-            .collect();
-        let faces: Vec<Face<'_, u32>> = model
-            .faces
-            .iter()
-            .map(|f| Face {
-                indices: &f.indices,
-                color: f.color,
-                alpha: 255,
+        let clipped = model
+            .with_mesh::<Q16_16, _>(|mesh| {
+                let vertices = mesh.vertices.len();
+                let mut clipped = 0;
+                for distance in [3.0, 0.6] {
+                    let opts = ConvertOptions {
+                        distance,
+                        ..ConvertOptions::default()
+                    };
+                    let rotations = random_rotations(200, 99);
+                    let alone: Vec<_> = rotations
+                        .iter()
+                        .map(|r| measure_view(mesh, r, &opts).unwrap())
+                        .collect();
+                    for extra in [0, 5, 256] {
+                        let split = on_cores(&rotations, vertices + extra, |r, slots| {
+                            measure_view_in(mesh, r, &opts, slots).unwrap()
+                        });
+                        assert_eq!(split, alone, "distance {distance}, {extra} extra slots");
+                    }
+                    let few = &mut [RasterVertex::default(); 7];
+                    for (r, want) in rotations.iter().zip(&alone) {
+                        assert_eq!(measure_view_in(mesh, r, &opts, few).unwrap(), *want);
+                    }
+                    clipped += alone
+                        .iter()
+                        .filter(|r| r.vertices as usize > vertices)
+                        .count();
+                }
+                clipped
             })
-            .collect();
-        let mesh = Mesh::new(&verts, &faces);
-        let mut clipped = 0;
-        for distance in [3.0, 0.6] {
-            let opts = ConvertOptions {
-                distance,
-                ..ConvertOptions::default()
-            };
-            let rotations = random_rotations(200, 99);
-            let alone: Vec<_> = rotations
-                .iter()
-                .map(|r| measure_view(&mesh, r, &opts).unwrap())
-                .collect();
-            for extra in [0, 5, 256] {
-                let split = on_cores(&rotations, verts.len() + extra, |r, slots| {
-                    measure_view_in(&mesh, r, &opts, slots).unwrap()
-                });
-                assert_eq!(split, alone, "distance {distance}, {extra} extra slots");
-            }
-            let few = &mut [RasterVertex::default(); 7];
-            for (r, want) in rotations.iter().zip(&alone) {
-                assert_eq!(measure_view_in(&mesh, r, &opts, few).unwrap(), *want);
-            }
-            clipped += alone
-                .iter()
-                .filter(|r| r.vertices as usize > verts.len())
-                .count();
-        }
+            .unwrap();
         assert!(clipped > 0, "no view made vertices by clipping");
     }
 

@@ -10,6 +10,7 @@
 
 use std::collections::HashMap;
 use zrow::scene::{Mesh, MeshIndex};
+use zrow::structure::{face_edges, FacePlane};
 use zrow::Scalar;
 
 /// Whether `mesh` is a closed convex solid with outward faces: the rule, the tolerance and the
@@ -52,33 +53,15 @@ pub fn closed_convex<N: Scalar, I: MeshIndex>(mesh: &Mesh<'_, N, I>) -> bool {
         return false;
     }
     let tolerance = 1e-9 * extent.max(f64::MIN_POSITIVE);
-    let mut planes = Vec::with_capacity(mesh.faces.len());
-    for f in mesh.faces {
-        // Newell's normal and the face's centroid, as the core computes them.
-        let (mut n, mut c) = ([0.0f64; 3], [0.0f64; 3]);
-        for (a, b) in face_edges(f.indices) {
-            let (Some(p), Some(q)) = (v(a), v(b)) else {
-                return false;
-            };
-            n[0] += (p[1] - q[1]) * (p[2] + q[2]);
-            n[1] += (p[2] - q[2]) * (p[0] + q[0]);
-            n[2] += (p[0] - q[0]) * (p[1] + q[1]);
-            for (ck, pk) in c.iter_mut().zip(p) {
-                *ck += pk / f.indices.len() as f64;
-            }
-        }
-        let norm2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-        if norm2 == 0.0 || !norm2.is_finite() {
-            return false;
-        }
-        planes.push(Plane { n, c, norm2 });
-    }
-    let in_front = |plane: &Plane, p: [f64; 3]| {
-        let dn = (p[0] - plane.c[0]) * plane.n[0]
-            + (p[1] - plane.c[1]) * plane.n[1]
-            + (p[2] - plane.c[2]) * plane.n[2];
-        dn > 0.0 && dn * dn > tolerance * tolerance * plane.norm2
+    let planes: Option<Vec<FacePlane>> = mesh
+        .faces
+        .iter()
+        .map(|f| FacePlane::of(f.indices, v))
+        .collect();
+    let Some(planes) = planes else {
+        return false;
     };
+    let in_front = |plane: &FacePlane, p: [f64; 3]| plane.in_front(p, tolerance);
     // A reflex edge: the neighbour's corners in front of the face's plane.
     for (&(a, b), &fi) in &edges {
         let g = edges[&(b, a)] as usize;
@@ -97,20 +80,6 @@ pub fn closed_convex<N: Scalar, I: MeshIndex>(mesh: &Mesh<'_, N, I>) -> bool {
         let threshold = 0.5 * tolerance * plane.norm2.sqrt();
         !tree.any_beyond(plane, threshold, |p| in_front(plane, p))
     })
-}
-
-/// A face's plane: Newell's normal `n` (not unit, `norm2 = |n|²`) through the centroid `c`.
-struct Plane {
-    n: [f64; 3],
-    c: [f64; 3],
-    norm2: f64,
-}
-
-/// A face's directed edges `(a, b)` as vertex numbers, in order, the last closing the loop.
-fn face_edges<I: MeshIndex>(f: &[I]) -> impl Iterator<Item = (usize, usize)> + '_ {
-    f.iter()
-        .zip(f.iter().cycle().skip(1))
-        .map(|(&a, &b)| (a.index(), b.index()))
 }
 
 /// Points in a bounding-box tree: each node a box and a range of `points`, split at the median
@@ -171,7 +140,12 @@ impl Tree {
     /// Whether a point for which `test` holds lies in a box reaching farther than `threshold`
     /// in front of `plane` (boxes that do not are skipped: their points cannot pass a test
     /// asking for more than that).
-    fn any_beyond(&self, plane: &Plane, threshold: f64, test: impl Fn([f64; 3]) -> bool) -> bool {
+    fn any_beyond(
+        &self,
+        plane: &FacePlane,
+        threshold: f64,
+        test: impl Fn([f64; 3]) -> bool,
+    ) -> bool {
         let mut stack = Vec::with_capacity(64);
         if !self.nodes.is_empty() {
             stack.push(0);
@@ -180,8 +154,11 @@ impl Tree {
             let node = &self.nodes[i];
             let reach: f64 = (0..3)
                 .map(|k| {
-                    let (a, b) = (node.lo[k] - plane.c[k], node.hi[k] - plane.c[k]);
-                    (a * plane.n[k]).max(b * plane.n[k])
+                    let (a, b) = (
+                        node.lo[k] - plane.centroid[k],
+                        node.hi[k] - plane.centroid[k],
+                    );
+                    (a * plane.normal[k]).max(b * plane.normal[k])
                 })
                 .sum();
             if reach <= threshold {
@@ -378,9 +355,9 @@ mod tests {
         for _ in 0..500 {
             let n = [next(), next(), next()];
             let c = [next(), next(), next()].map(|x| x * 1.5);
-            let plane = Plane {
-                n,
-                c,
+            let plane = FacePlane {
+                normal: n,
+                centroid: c,
                 norm2: n.iter().map(|x| x * x).sum(),
             };
             let threshold = 0.3 * plane.norm2.sqrt();

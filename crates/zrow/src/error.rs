@@ -131,6 +131,22 @@ impl core::fmt::Display for Table {
     }
 }
 
+impl Error {
+    /// The face the error is about (its number in the scene: objects in order, faces in
+    /// order), for an error about one face; a loader uses it to name the line the face came
+    /// from.
+    pub fn face(&self) -> Option<u32> {
+        match *self {
+            Error::IndexOutOfRange { face, .. }
+            | Error::TooFewVertices { face }
+            | Error::TooManyVertices { face }
+            | Error::NonFinite { face }
+            | Error::NotConvex { face } => Some(face),
+            _ => None,
+        }
+    }
+}
+
 impl core::fmt::Display for Error {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match *self {

@@ -41,10 +41,10 @@ pub fn closed_convex<N: Scalar, I: MeshIndex>(mesh: &Mesh<'_, N, I>) -> bool {
         }
     }
     for (fi, f) in mesh.faces.iter().enumerate() {
-        for (a, b) in edges(f.indices) {
+        for (a, b) in face_edges(f.indices) {
             let (mut same, mut opposite) = (0, 0);
             for (gi, g) in mesh.faces.iter().enumerate() {
-                for (c, d) in edges(g.indices) {
+                for (c, d) in face_edges(g.indices) {
                     if (c, d) == (a, b) && gi != fi {
                         same += 1;
                     }
@@ -60,38 +60,70 @@ pub fn closed_convex<N: Scalar, I: MeshIndex>(mesh: &Mesh<'_, N, I>) -> bool {
     }
     let tolerance = 1e-9 * extent.max(f64::MIN_POSITIVE);
     for f in mesh.faces {
-        // Newell's normal and the face's centroid.
-        let (mut n, mut c) = ([0.0f64; 3], [0.0f64; 3]);
-        for (a, b) in edges(f.indices) {
-            let (Some(p), Some(q)) = (v(a), v(b)) else {
-                return false;
-            };
-            n[0] += (p[1] - q[1]) * (p[2] + q[2]);
-            n[1] += (p[2] - q[2]) * (p[0] + q[0]);
-            n[2] += (p[0] - q[0]) * (p[1] + q[1]);
-            for (ck, pk) in c.iter_mut().zip(p) {
-                *ck += pk / f.indices.len() as f64;
-            }
-        }
-        // No square root in core: compare d·|n| with tolerance·|n|, squared.
-        let norm2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-        if norm2 == 0.0 || !norm2.is_finite() {
+        let Some(plane) = FacePlane::of(f.indices, v) else {
             return false;
-        }
-        for p in mesh.vertices {
-            let dn = (p.x.to_f64() - c[0]) * n[0]
-                + (p.y.to_f64() - c[1]) * n[1]
-                + (p.z.to_f64() - c[2]) * n[2];
-            if dn > 0.0 && dn * dn > tolerance * tolerance * norm2 {
-                return false;
-            }
+        };
+        let beyond = mesh
+            .vertices
+            .iter()
+            .any(|p| plane.in_front([p.x.to_f64(), p.y.to_f64(), p.z.to_f64()], tolerance));
+        if beyond {
+            return false;
         }
     }
     true
 }
 
+/// A face's plane as [`closed_convex`] tests it: Newell's normal (outward for a face
+/// counter-clockwise seen from outside; not unit, `norm2` is its squared length) through the
+/// face's centroid, in `f64`. Public so that a host-side check with other data structures
+/// (zrow-model's) keeps the same arithmetic.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FacePlane {
+    /// Newell's normal.
+    pub normal: [f64; 3],
+    /// The centroid of the face's corners.
+    pub centroid: [f64; 3],
+    /// `|normal|²`.
+    pub norm2: f64,
+}
+
+impl FacePlane {
+    /// The plane of the face with vertex numbers `indices`, each corner from `vertex`; `None`
+    /// if a corner is missing or the normal is zero or not finite.
+    pub fn of<I: MeshIndex>(
+        indices: &[I],
+        vertex: impl Fn(usize) -> Option<[f64; 3]>,
+    ) -> Option<Self> {
+        let (mut n, mut c) = ([0.0f64; 3], [0.0f64; 3]);
+        for (a, b) in face_edges(indices) {
+            let (p, q) = (vertex(a)?, vertex(b)?);
+            n[0] += (p[1] - q[1]) * (p[2] + q[2]);
+            n[1] += (p[2] - q[2]) * (p[0] + q[0]);
+            n[2] += (p[0] - q[0]) * (p[1] + q[1]);
+            for (ck, pk) in c.iter_mut().zip(p) {
+                *ck += pk / indices.len() as f64;
+            }
+        }
+        let norm2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+        (norm2 != 0.0 && norm2.is_finite()).then_some(FacePlane {
+            normal: n,
+            centroid: c,
+            norm2,
+        })
+    }
+
+    /// Whether `p` lies in front of the plane by more than `tolerance` (compared squared: no
+    /// square root in the core).
+    pub fn in_front(&self, p: [f64; 3], tolerance: f64) -> bool {
+        let (n, c) = (self.normal, self.centroid);
+        let dn = (p[0] - c[0]) * n[0] + (p[1] - c[1]) * n[1] + (p[2] - c[2]) * n[2];
+        dn > 0.0 && dn * dn > tolerance * tolerance * self.norm2
+    }
+}
+
 /// A face's directed edges `(a, b)` as vertex numbers, in order, the last closing the loop.
-fn edges<I: MeshIndex>(f: &[I]) -> impl Iterator<Item = (usize, usize)> + '_ {
+pub fn face_edges<I: MeshIndex>(f: &[I]) -> impl Iterator<Item = (usize, usize)> + '_ {
     f.iter()
         .zip(f.iter().cycle().skip(1))
         .map(|(&a, &b)| (a.index(), b.index()))
