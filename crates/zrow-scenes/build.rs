@@ -92,6 +92,25 @@ impl MeshGen {
             writeln!(out, "];").unwrap();
         }
         let f = self.faces.len();
+        if self.triangles() {
+            // Triangles: their indices and one colour each (zrow::Faces::Triangles), 8 bytes a
+            // face instead of a zrow::Face's 12 and its indices' 6.
+            writeln!(
+                out,
+                "pub(crate) static {name}_TRIANGLES: [[u16; 3]; {f}] = ["
+            )
+            .unwrap();
+            for (idx, _) in &self.faces {
+                writeln!(out, "    {idx:?},").unwrap();
+            }
+            writeln!(out, "];").unwrap();
+            writeln!(out, "pub(crate) static {name}_COLORS: [Rgb565; {f}] = [").unwrap();
+            for (_, (r, g, b)) in &self.faces {
+                writeln!(out, "    Rgb565::new({r}, {g}, {b}),").unwrap();
+            }
+            writeln!(out, "];").unwrap();
+            return;
+        }
         writeln!(
             out,
             "pub(crate) static {name}_FACES: [Face<'static>; {f}] = ["
@@ -106,12 +125,26 @@ impl MeshGen {
         }
         writeln!(out, "];").unwrap();
     }
+
+    /// Whether every face is a triangle (emitted as zrow::Faces::Triangles).
+    fn triangles(&self) -> bool {
+        self.faces.iter().all(|(idx, _)| idx.len() == 3)
+    }
 }
 
 impl MeshGen {
     /// The faces alone, every one in `color`, as `static {name}: [Face; n]` (an object drawn in
     /// one colour over the same vertices).
     fn emit_faces_in(&self, out: &mut String, name: &str, (r, g, b): (u8, u8, u8)) {
+        if self.triangles() {
+            // The same triangles (`{mesh}_TRIANGLES`) in one colour: the colour alone.
+            writeln!(
+                out,
+                "pub(crate) static {name}: [Rgb565; 1] = [Rgb565::new({r}, {g}, {b})];"
+            )
+            .unwrap();
+            return;
+        }
         let f = self.faces.len();
         writeln!(out, "pub(crate) static {name}: [Face<'static>; {f}] = [").unwrap();
         for (idx, _) in &self.faces {
@@ -222,8 +255,8 @@ fn main() {
     let ring = torus(16, 8, 0.7, 0.25);
     ring.emit(&mut out, "RING");
     // The interlocked demo: one lit colour per object.
-    ring.emit_faces_in(&mut out, "RING_WARM_FACES", (31, 38, 6));
-    ring.emit_faces_in(&mut out, "RING_COOL_FACES", (6, 44, 30));
+    ring.emit_faces_in(&mut out, "RING_WARM_COLOR", (31, 38, 6));
+    ring.emit_faces_in(&mut out, "RING_COOL_COLOR", (6, 44, 30));
     cube.emit_faces_in(&mut out, "CUBE_PLAIN_FACES", (29, 58, 26));
     random_triangles(400, 240.0, 100.0, 0x2545_f491).emit(&mut out, "RANDOM400");
     foley(100).emit(&mut out, "FOLEY100");

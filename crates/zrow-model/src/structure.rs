@@ -66,11 +66,11 @@ pub fn closed_convex<N: Scalar, I: MeshIndex>(mesh: &Mesh<'_, N, I>) -> bool {
     for (&(a, b), &fi) in &edges {
         let g = edges[&(b, a)] as usize;
         let plane = &planes[fi as usize];
-        if mesh.faces[g]
-            .indices
-            .iter()
-            .any(|&k| v(k.index()).is_some_and(|p| in_front(plane, p)))
-        {
+        if mesh.faces.get(g).is_some_and(|f| {
+            f.indices
+                .iter()
+                .any(|&k| v(k.index()).is_some_and(|p| in_front(plane, p)))
+        }) {
             return false;
         }
     }

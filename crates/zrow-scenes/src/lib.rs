@@ -165,20 +165,21 @@ impl Format for Q24_8 {
 
 /// The mesh of a standard scene, borrowed from flash.
 pub fn mesh<N: Format>(name: &str) -> Option<Mesh<'static, N>> {
-    let (vertices, faces): (&'static [Vec3<N>], &'static [Face<'static>]) = match name {
-        "cube" => (N::cube(), &meshes::CUBE_FACES),
-        "mesh1k" => (N::torus(), &meshes::TORUS_FACES),
-        "random400" => (N::random400(), &meshes::RANDOM400_FACES),
-        "foley100" => (N::foley100(), &meshes::FOLEY100_FACES),
-        "foley2500" => (N::foley2500(), &meshes::FOLEY2500_FACES),
-        "ring" => (N::ring(), &meshes::RING_FACES),
+    use meshes::*;
+    let triangles = Mesh::triangles;
+    Some(match name {
+        "cube" => Mesh::new(N::cube(), &CUBE_FACES),
+        "mesh1k" => triangles(N::torus(), &TORUS_TRIANGLES, &TORUS_COLORS),
+        "random400" => triangles(N::random400(), &RANDOM400_TRIANGLES, &RANDOM400_COLORS),
+        "foley100" => triangles(N::foley100(), &FOLEY100_TRIANGLES, &FOLEY100_COLORS),
+        "foley2500" => triangles(N::foley2500(), &FOLEY2500_TRIANGLES, &FOLEY2500_COLORS),
+        "ring" => triangles(N::ring(), &RING_TRIANGLES, &RING_COLORS),
         // The interlocked demo's objects: one colour each.
-        "ring-warm" => (N::ring(), &meshes::RING_WARM_FACES),
-        "ring-cool" => (N::ring(), &meshes::RING_COOL_FACES),
-        "cube-plain" => (N::cube(), &meshes::CUBE_PLAIN_FACES),
+        "ring-warm" => triangles(N::ring(), &RING_TRIANGLES, &RING_WARM_COLOR),
+        "ring-cool" => triangles(N::ring(), &RING_TRIANGLES, &RING_COOL_COLOR),
+        "cube-plain" => Mesh::new(N::cube(), &CUBE_PLAIN_FACES),
         _ => return None,
-    };
-    Some(Mesh::new(vertices, faces))
+    })
 }
 
 /// The model scenes' eye (looking at the origin, y up).
@@ -277,7 +278,12 @@ pub fn with_demo<N: Format, R>(
     match name {
         "interlocked" => interlocked(angle, math, f),
         "cube" => model(Mesh::new(N::cube(), &meshes::CUBE_FACES), angle, math, f),
-        "mesh1k" => model(Mesh::new(N::torus(), &meshes::TORUS_FACES), angle, math, f),
+        "mesh1k" => model(
+            Mesh::triangles(N::torus(), &meshes::TORUS_TRIANGLES, &meshes::TORUS_COLORS),
+            angle,
+            math,
+            f,
+        ),
         _ => None,
     }
 }
@@ -315,8 +321,8 @@ fn interlocked<N: Format, R>(
     math: MathLib,
     f: impl FnOnce(&dyn Scene<N>, &Config, usize) -> R,
 ) -> Option<R> {
-    let warm = Mesh::new(N::ring(), &meshes::RING_WARM_FACES);
-    let cool = Mesh::new(N::ring(), &meshes::RING_COOL_FACES);
+    let warm = Mesh::triangles(N::ring(), &meshes::RING_TRIANGLES, &meshes::RING_WARM_COLOR);
+    let cool = Mesh::triangles(N::ring(), &meshes::RING_TRIANGLES, &meshes::RING_COOL_COLOR);
     let cube = Mesh::new(N::cube(), &meshes::CUBE_PLAIN_FACES);
     // Ring A lies flat, ring B stands up through A's hole; the cube sits where they cross.
     let turn =

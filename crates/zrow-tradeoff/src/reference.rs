@@ -212,7 +212,7 @@ pub fn build(objs: &[Obj<'_>], cam: &Cam, light: ([f64; 3], f64), size: usize) -
             );
             let lambert = (dot(n, l) / dot(n, n).sqrt()).max(0.0);
             let intensity = light.1 + (1.0 - light.1) * lambert;
-            let lit = channels(face).map(|c| c * intensity);
+            let lit = channels(&face).map(|c| c * intensity);
             let xy: Vec<[f64; 2]> = v
                 .iter()
                 .map(|p| {

@@ -82,6 +82,14 @@ pub enum Error {
         /// Normals in the mesh.
         normals: u32,
     },
+    /// A mesh of triangles ([`crate::Faces::Triangles`]) has `colors` colours for its `faces`
+    /// triangles: give one per triangle, or one for all.
+    Colors {
+        /// Triangles in the mesh.
+        faces: u32,
+        /// Colours in the mesh.
+        colors: u32,
+    },
     /// The configuration is impossible: size 0 or above `MAX_VIEWPORT`, sub-pixel bits
     /// outside 1..=8, or depth-cue parameters that are not finite, not `near < far`, or a
     /// `floor` outside 0..=1.
@@ -177,6 +185,10 @@ impl core::fmt::Display for Error {
             Error::Normals { faces, normals } => write!(
                 f,
                 "mesh has {normals} normals for {faces} faces: give one per face or none"
+            ),
+            Error::Colors { faces, colors } => write!(
+                f,
+                "mesh has {colors} colours for {faces} triangles: give one per triangle or one for all"
             ),
             Error::BadConfig => write!(
                 f,

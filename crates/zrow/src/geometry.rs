@@ -387,7 +387,7 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ScreenScene<'_, N, I> {
         f: &mut dyn FnMut(&Polygon<'_, N>) -> Result<(), Error>,
     ) -> Result<(), Error> {
         let mesh = &self.mesh;
-        mesh.check_normals()?;
+        mesh.check()?;
         let s = cfg.subpixel_bits as u32;
         let (lo, hx, hy): (N, N, N) = (
             num(-GUARD_BAND),
@@ -408,7 +408,7 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ScreenScene<'_, N, I> {
         }
         let mut corners = [0u32; MAX_POLYGON_VERTICES];
         for (no, face) in mesh.faces.iter().enumerate() {
-            let no = no as u32;
+            let (no, face) = (no as u32, &face);
             let (n, projected) =
                 corners_of(face, mesh.vertices.len(), base, buf, &mut corners, no)?;
             let mut out = Out {
@@ -788,7 +788,7 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
             Some(Vec3::new(l.x.div(len)?, l.y.div(len)?, l.z.div(len)?))
         });
         for obj in self.objects {
-            obj.mesh.check_normals()?;
+            obj.mesh.check()?;
         }
         let mut no = 0u32;
         let mut corners = [0u32; MAX_POLYGON_VERTICES];
@@ -820,6 +820,7 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
             };
             let count = mesh.vertices.len();
             for (k, face) in mesh.faces.iter().enumerate() {
+                let face = &face;
                 let this = no;
                 no += 1;
                 // A triangle whose corners all projected (nearly every face of a mesh in

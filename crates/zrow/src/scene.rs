@@ -115,14 +115,154 @@ impl<'a> Face<'a, u16> {
     }
 }
 
+/// A mesh's faces: a list of [`Face`]s or, in less than half the flash, opaque triangles.
+///
+/// A [`Face`] is a slice (8 bytes on a 32-bit MCU) plus its colour and opacity: 12 bytes
+/// besides its indices. Triangles need only their indices and colours: the 1,000-triangle
+/// torus is 6,000 bytes of `u16` indices and 2,000 of colours as [`Faces::Triangles`]
+/// instead of 18,000 as a list of faces (and 6,000 with one colour for all). Either kind is
+/// read through [`Faces::get`] and [`Faces::iter`], which hand out each face as a [`Face`]
+/// (by value, borrowing the same indices).
+///
+/// ```
+/// use zrow::{Face, Faces, Mesh, Rgb565, Vec3};
+/// let v = [Vec3::new(0.0f32, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0)];
+/// let green = [Rgb565::new(0, 63, 0)];
+/// let tris = Mesh::triangles(&v, &[[0u16, 1, 2]], &green);
+/// let list = [Face::new(&[0, 1, 2], green[0])];
+/// assert_eq!(tris.faces.len(), 1);
+/// assert_eq!(tris.faces.get(0), Mesh::new(&v, &list).faces.get(0));
+/// assert!(matches!(tris.faces, Faces::Triangles { .. }));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Faces<'a, I = u16> {
+    /// Faces of any number of corners, each with its colour and opacity.
+    List(&'a [Face<'a, I>]),
+    /// Opaque triangles.
+    Triangles {
+        /// Each triangle's corners (counter-clockwise seen from outside for meshes that are
+        /// culled).
+        indices: &'a [[I; 3]],
+        /// One colour per triangle, or one for all of them; any other length is
+        /// [`Error::Colors`].
+        colors: &'a [Rgb565],
+    },
+}
+
+impl<'a, I> Faces<'a, I> {
+    /// How many faces.
+    pub const fn len(&self) -> usize {
+        match self {
+            Faces::List(l) => l.len(),
+            Faces::Triangles { indices, .. } => indices.len(),
+        }
+    }
+
+    /// Whether there is none.
+    pub const fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Face `k`, or `None` past the end.
+    #[inline]
+    pub fn get(&self, k: usize) -> Option<Face<'a, I>>
+    where
+        I: Copy,
+    {
+        match *self {
+            Faces::List(l) => l.get(k).copied(),
+            Faces::Triangles { indices, colors } => Some(Face {
+                indices: indices.get(k)?,
+                color: *match colors {
+                    [one] => one,
+                    _ => colors.get(k)?,
+                },
+                alpha: 255,
+            }),
+        }
+    }
+
+    /// The faces in order.
+    #[inline]
+    pub fn iter(&self) -> FacesIter<'a, I> {
+        match *self {
+            Faces::List(l) => FacesIter::List(l.iter()),
+            Faces::Triangles { indices, colors } => FacesIter::Triangles(indices.iter(), colors),
+        }
+    }
+}
+
+impl<'a, I> From<&'a [Face<'a, I>]> for Faces<'a, I> {
+    fn from(list: &'a [Face<'a, I>]) -> Self {
+        Faces::List(list)
+    }
+}
+
+impl<'a, I, const K: usize> From<&'a [Face<'a, I>; K]> for Faces<'a, I> {
+    fn from(list: &'a [Face<'a, I>; K]) -> Self {
+        Faces::List(list)
+    }
+}
+
+impl<'a, I: Copy> IntoIterator for Faces<'a, I> {
+    type Item = Face<'a, I>;
+    type IntoIter = FacesIter<'a, I>;
+    fn into_iter(self) -> FacesIter<'a, I> {
+        self.iter()
+    }
+}
+
+/// The faces of a [`Faces`] in order ([`Faces::iter`]).
+#[derive(Clone, Debug)]
+pub enum FacesIter<'a, I> {
+    #[doc(hidden)]
+    List(core::slice::Iter<'a, Face<'a, I>>),
+    #[doc(hidden)]
+    Triangles(core::slice::Iter<'a, [I; 3]>, &'a [Rgb565]),
+}
+
+impl<'a, I: Copy> Iterator for FacesIter<'a, I> {
+    type Item = Face<'a, I>;
+    #[inline]
+    fn next(&mut self) -> Option<Face<'a, I>> {
+        match self {
+            FacesIter::List(l) => l.next().copied(),
+            FacesIter::Triangles(t, colors) => {
+                let c: &'a [Rgb565] = colors;
+                let color = match c {
+                    [one] => *one,
+                    [first, rest @ ..] => {
+                        *colors = rest;
+                        *first
+                    }
+                    [] => return None,
+                };
+                Some(Face {
+                    indices: t.next()?,
+                    color,
+                    alpha: 255,
+                })
+            }
+        }
+    }
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        match self {
+            FacesIter::List(l) => l.size_hint(),
+            FacesIter::Triangles(t, _) => t.size_hint(),
+        }
+    }
+}
+
+impl<I: Copy> ExactSizeIterator for FacesIter<'_, I> {}
+
 /// A mesh: vertices, faces and optionally one normal per face, all borrowed (so a converted
 /// model can live in flash).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Mesh<'a, N, I = u16> {
     /// Vertex positions.
     pub vertices: &'a [Vec3<N>],
-    /// Faces.
-    pub faces: &'a [Face<'a, I>],
+    /// Faces: a list of [`Face`]s, or triangles of one colour ([`Faces`]).
+    pub faces: Faces<'a, I>,
     /// Precomputed face normals, or empty. Empty: model mode computes each face's normal per
     /// frame from its first three (transformed) vertices. Otherwise exactly one model-space
     /// outward normal per face, of unit length (any positive length works; a zero normal
@@ -137,7 +277,21 @@ impl<'a, N, I> Mesh<'a, N, I> {
     pub const fn new(vertices: &'a [Vec3<N>], faces: &'a [Face<'a, I>]) -> Self {
         Mesh {
             vertices,
-            faces,
+            faces: Faces::List(faces),
+            normals: &[],
+        }
+    }
+    /// A mesh of opaque triangles ([`Faces::Triangles`]: 6 bytes a triangle with `u16`
+    /// indices, and 2 for its colour unless one colour is given for all, instead of 18 as a
+    /// list of [`Face`]s), whose normals model mode computes per frame.
+    pub const fn triangles(
+        vertices: &'a [Vec3<N>],
+        indices: &'a [[I; 3]],
+        colors: &'a [Rgb565],
+    ) -> Self {
+        Mesh {
+            vertices,
+            faces: Faces::Triangles { indices, colors },
             normals: &[],
         }
     }
@@ -149,20 +303,28 @@ impl<'a, N, I> Mesh<'a, N, I> {
     ) -> Self {
         Mesh {
             vertices,
-            faces,
+            faces: Faces::List(faces),
             normals,
         }
     }
-    /// Checks that `normals` is empty or has one entry per face.
-    pub(crate) fn check_normals(&self) -> Result<(), Error> {
+    /// Checks that `normals` is empty or has one entry per face, and that triangles have one
+    /// colour each or one for all.
+    pub(crate) fn check(&self) -> Result<(), Error> {
         let (faces, normals) = (self.faces.len(), self.normals.len());
-        if normals == 0 || normals == faces {
-            Ok(())
-        } else {
-            Err(Error::Normals {
+        if normals != 0 && normals != faces {
+            return Err(Error::Normals {
                 faces: faces as u32,
                 normals: normals as u32,
-            })
+            });
+        }
+        match self.faces {
+            Faces::Triangles { colors, .. } if colors.len() != 1 && colors.len() != faces => {
+                Err(Error::Colors {
+                    faces: faces as u32,
+                    colors: colors.len() as u32,
+                })
+            }
+            _ => Ok(()),
         }
     }
 }

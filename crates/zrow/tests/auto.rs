@@ -44,7 +44,8 @@ fn the_cube_is_closed_and_convex_the_torus_is_not() {
         &zrow_scenes::mesh::<Q16_16>("mesh1k").unwrap()
     ));
     // Open: one face missing.
-    let open = Mesh::new(cube.vertices, &cube.faces[1..]);
+    let rest: Vec<_> = cube.faces.iter().skip(1).collect();
+    let open = Mesh::new(cube.vertices, &rest);
     assert!(!closed_convex(&open));
     // Inconsistent: one face turned over.
     let flipped: Vec<Vec<u16>> = cube

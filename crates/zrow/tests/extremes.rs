@@ -880,7 +880,7 @@ fn bad_input<N: Scalar>() {
     let scene = ScreenScene {
         mesh: Mesh {
             vertices: &v,
-            faces: &[tri],
+            faces: zrow::Faces::List(&[tri]),
             normals: &[],
         },
     };

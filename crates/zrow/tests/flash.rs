@@ -6,16 +6,18 @@
 //! - Precomputed normals (computed in f64 from the model, then converted) give the same
 //!   coverage and depth bits as normals computed per frame, and colours within 1 LSB per
 //!   channel (only the shading's rounding differs).
-//! - A normals slice of the wrong length, and a `u8` index past the vertices, are typed errors
-//!   raised before any row is sent.
+//! - A mesh of triangles (`Faces::Triangles`: indices and colours, no `Face` list) renders
+//!   bit for bit like the same triangles as a list of faces, one colour each or one for all.
+//! - A normals slice of the wrong length, a triangle mesh's colours of the wrong length, and
+//!   a `u8` index past the vertices, are typed errors raised before any row is sent.
 
 mod common;
 use common::*;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use zrow::scene::MeshIndex;
 use zrow::{
-    requirements, Affine, Camera, Config, Error, Face, Light, Mesh, ModelScene, Object, Projection,
-    RenderError, Scalar, ScreenScene, Vec3, Q16_16,
+    requirements, Affine, Camera, Config, Error, Face, Faces, Light, Mesh, ModelScene, Object,
+    Projection, RenderError, Scalar, ScreenScene, Vec3, Q16_16,
 };
 
 /// A model in f64: vertices, triangles (counter-clockwise seen from outside), and the unit
@@ -346,6 +348,99 @@ fn precomputed_normals_are_the_ones_shaded() {
             "n.y = {n}: {expected:?}"
         );
     }
+}
+
+fn triangles_like_faces<N: Scalar>() {
+    let model = Model::torus(16, 10, 1.0, 0.4);
+    let verts: Vec<Vec3<N>> = model.vertices.iter().map(|&v| vec3(v)).collect();
+    let tris: Vec<Vec<usize>> = model.tris.iter().map(|t| t.to_vec()).collect();
+    let lists = index_lists::<u16>(&tris).unwrap();
+    let triangles: Vec<[u16; 3]> = lists.iter().map(|l| [l[0], l[1], l[2]]).collect();
+    let colors: Vec<Rgb565> = (0..lists.len()).map(face_color).collect();
+    let list = faces(&lists);
+    let one: Vec<Face> = lists.iter().map(|l| Face::new(l, colors[7])).collect();
+    let (each, all) = (
+        Mesh::triangles(&verts, &triangles, &colors),
+        Mesh::triangles(&verts, &triangles, &colors[7..8]),
+    );
+    assert!(each.faces.iter().eq(list.iter().copied()), "iter");
+    assert!((0..=lists.len()).all(|k| each.faces.get(k) == list.get(k).copied()));
+    assert!(all.faces.iter().eq(one.iter().copied()), "iter, one colour");
+    for camera in cameras::<N>() {
+        for cfg in [Config::model(96, 80), Config::screen(96, 80)] {
+            let a = render_model(&each, camera, &cfg).unwrap();
+            assert!(a.drawn() > 2000, "the scene fills the frame: {}", a.drawn());
+            assert_same(
+                &a,
+                &render_model(&Mesh::new(&verts, &list), camera, &cfg).unwrap(),
+                "each",
+            );
+            let a = render_model(&all, camera, &cfg).unwrap();
+            assert_same(
+                &a,
+                &render_model(&Mesh::new(&verts, &one), camera, &cfg).unwrap(),
+                "all",
+            );
+        }
+    }
+    let cfg = Config::screen(96, 80);
+    let screen: Vec<Vec3<N>> = model
+        .vertices
+        .iter()
+        .map(|v| vec3([48.0 + 30.0 * v[0], 40.0 + 30.0 * v[2], 5.0 + v[1]]))
+        .collect();
+    let a = render_screen(Mesh::triangles(&screen, &triangles, &colors), &cfg).unwrap();
+    assert!(a.drawn() > 2000, "{}", a.drawn());
+    assert_same(
+        &a,
+        &render_screen(Mesh::new(&screen, &list), &cfg).unwrap(),
+        "screen",
+    );
+}
+
+#[test]
+fn triangles_render_like_faces_q16_16() {
+    triangles_like_faces::<Q16_16>();
+}
+
+#[test]
+fn triangles_render_like_faces_f32() {
+    triangles_like_faces::<f32>();
+}
+
+#[test]
+fn wrong_colours_length_is_a_typed_error_before_any_row() {
+    let model = Model::torus(8, 6, 1.0, 0.4);
+    let verts: Vec<Vec3<Q16_16>> = model.vertices.iter().map(|&v| vec3(v)).collect();
+    let triangles: Vec<[u8; 3]> = model.tris.iter().map(|t| t.map(|k| k as u8)).collect();
+    let colors: Vec<Rgb565> = (0..2 * triangles.len()).map(face_color).collect();
+    let n = triangles.len();
+    let cfg = Config::model(64, 48);
+    for count in [0, 2, n - 1, n + 1] {
+        let expected = Error::Colors {
+            faces: n as u32,
+            colors: count as u32,
+        };
+        let bad = Mesh::triangles(&verts, &triangles, &colors[..count]);
+        assert!(matches!(bad.faces, Faces::Triangles { .. }));
+        for camera in cameras::<Q16_16>() {
+            let e = render_model(&bad, camera, &cfg).err();
+            assert_eq!(e, Some(RenderError::Scene(expected)), "{count} colours");
+        }
+        let mut cap = Capture::new(64, 48);
+        let mut r = Box::new(Big::<Q16_16>::new());
+        let e = r.render(&ScreenScene { mesh: bad }, &cfg, &mut cap);
+        assert_eq!(e, Err(RenderError::Scene(expected)));
+        assert_eq!(cap.rows_received, 0, "no row before the error");
+    }
+    assert_eq!(
+        Error::Colors {
+            faces: 3,
+            colors: 2
+        }
+        .to_string(),
+        "mesh has 2 colours for 3 triangles: give one per triangle or one for all"
+    );
 }
 
 #[test]
