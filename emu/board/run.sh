@@ -75,9 +75,29 @@ mutant() { # name, then a python snippet editing the text of file $2 in the copy
   local copy="$out/mutant-$name"
   rm -rf "$copy" && mkdir -p "$copy"
   cp -r "$root/firmware/src" "$root/firmware/Cargo.toml" "$root/firmware/Cargo.lock" \
-    "$root/firmware/build.rs" "$root/firmware/.cargo" "$copy/"
-  # Paths in the copy's manifest point back at the repository's crates.
-  sed -i "s#path = \"\\.\\./#path = \"$root/#g" "$copy/Cargo.toml"
+    "$root/firmware/build.rs" "$root/firmware/.cargo" "$root/firmware/demo" "$copy/"
+  # The row sink's crate is copied too (the mutations below edit it); every other path in
+  # the copies' manifests points back at the repository's crates.
+  cp -r "$root/crates/zrow-st7789" "$copy/zrow-st7789"
+  rm -rf "$copy/zrow-st7789/target"
+  sed -i "s#path = \"\\.\\./crates/zrow-st7789\"#path = \"zrow-st7789\"#; s#path = \"\\.\\./#path = \"$root/#g" "$copy/Cargo.toml"
+  sed -i "s#path = \"\\.\\./\\.\\./crates/zrow-st7789\"#path = \"../zrow-st7789\"#; s#path = \"\\.\\./\\.\\./#path = \"$root/#g" "$copy/demo/Cargo.toml"
+  # Outside the repository's workspace: what it inherits from there, spelled out.
+  "$py" - "$root" "$copy/zrow-st7789/Cargo.toml" <<'PY'
+import re, sys, tomllib
+root, path = sys.argv[1], sys.argv[2]
+ws = tomllib.load(open(f"{root}/Cargo.toml", "rb"))["workspace"]
+def value(v):
+    if isinstance(v, str):
+        return f'"{v}"'
+    return "{ " + ", ".join(f'{k} = "{root}/{x}"' if k == "path" else f"{k} = {value(x)}"
+                            for k, x in v.items()) + " }"
+text = open(path).read()
+text = re.sub(r"^([\w-]+)\.workspace = true$",
+              lambda m: f"{m[1]} = {value(ws['package'].get(m[1]) or ws['dependencies'][m[1]])}",
+              text, flags=re.M)
+open(path, "w").write(text)
+PY
   sed -i "s#\"\\.\\./memory.x\"#\"$root/memory.x\"#g" "$copy/build.rs"
   "$py" - "$copy/$file" "$edit" <<'PY'
 import sys
@@ -102,10 +122,10 @@ PY
     echo "caught: $(grep -m1 -E 'error|differ|protocol|panel ends' "$out/mutant-$name.log" || tail -1 "$out/mutant-$name.log")"
   fi
 }
-mutant dc-polarity src/dma_rows.rs \
-  'let _ = self.dc.set_low();=>let _ = self.dc.set_high();'
-mutant half-row src/dma_rows.rs \
-  'let (_, signature) = encode_row_signed(row.color, spare);=>let (_, signature) = encode_row_signed(row.color, spare); zrow_st7789::encode_row(&[zrow::pixelcolor::Rgb565::new(0, 0, 0); 120], &mut spare[240..]);'
+mutant dc-polarity zrow-st7789/src/dma.rs \
+  'dc.set_low()?;=>dc.set_high()?;'
+mutant half-row zrow-st7789/src/dma.rs \
+  'let (_, signature) = encode_row_signed(row.color, buf);=>let (_, signature) = encode_row_signed(row.color, buf); crate::encode_row(&[zrow::pixelcolor::Rgb565::new(0, 0, 0); 120], &mut buf[240..]);'
 mutant no-inversion src/main.rs \
   '.invert_colors(ColorInversion::Inverted)=>'
 exit "$fail"

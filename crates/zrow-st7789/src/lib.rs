@@ -45,8 +45,10 @@
 //! - [`coherence`]: frame coherence on the wire: [`CoherentRows`] sends only the rows that
 //!   changed since the last frame (a 32-bit signature per row), [`Coherence`] the same
 //!   decision for DMA firmware.
-//! - [`encode_row`]: the row encoding alone, for firmware that double-buffers rows and sends
-//!   them by DMA (encode row *k + 1* while row *k* is on the wire).
+//! - [`dma`]: the same coherent sending from two row buffers by DMA (encode row *k + 1* while
+//!   row *k* is on the wire), over a board's DMA transfer ([`dma::DmaLink`]): the row sink of
+//!   both board firmwares.
+//! - [`encode_row`]: the row encoding alone, for firmware of its own.
 //! - `model` and `mock` (feature `model`, needs `std`): an ST7789 model that decodes the
 //!   command/data stream into a frame, and mock SPI/DC/delay that feed it, so the whole path
 //!   is tested on the host.
@@ -59,6 +61,7 @@ extern crate std;
 
 pub mod coherence;
 pub mod command;
+pub mod dma;
 pub mod error;
 #[cfg(feature = "model")]
 pub mod mock;

@@ -1,71 +1,142 @@
 //! Frame coherence on the wire, checked on the panel model: over 200 consecutive frames of
 //! each demo scene (the board's sequence of angles), sending only the changed rows leaves the
 //! panel's memory equal to a full render after every frame — through the blocking
-//! `CoherentRows` sink and through a sender built like the firmware's DMA one (`Coherence`
-//! and `open_run` with its own command writes) — with fewer bytes on the wire. The first
-//! frame, and the frame after a send error or a command, go whole.
+//! `CoherentRows` sink and through the firmwares' DMA sink (`zrow_st7789::dma::DmaRows`)
+//! over a link that feeds the model as a DMA engine would — with fewer bytes on the wire. The
+//! first frame, and the frame after a send error, a refused DMA transfer or a command, go
+//! whole.
+
+use std::cell::RefCell;
+use std::rc::Rc;
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use zrow::{FrameBuffer, Row, RowSink, Scanline, Q16_16};
-use zrow_st7789::coherence::{open_run, Coherence, RowAction};
+use zrow_st7789::dma::{DmaLink, DmaRows, RowBuf};
 use zrow_st7789::mock::MockBus;
 use zrow_st7789::model::St7789Model;
-use zrow_st7789::{encode_row, init_sequence, CoherentRows, Window};
+use zrow_st7789::{init_sequence, CoherentRows, Window};
 
 const WINDOW: Window = Window::new(240, 240);
 /// One full frame on the wire: the window, RAMWR and 240 rows of 480 bytes.
 const FULL_FRAME_BYTES: u64 = 5 + 5 + 1 + 240 * 480;
 
-/// What `firmware/src/dma_rows.rs` does per row: encode, ask `Coherence`, and for a run's
-/// first row send the window (command byte DC low, parameters DC high) before the row.
-struct DmaLike {
+/// The panel behind a [`ModelLink`] and its DC pin.
+struct Panel {
     model: St7789Model,
-    coherence: Coherence<240>,
-    line: [u8; 480],
+    dc: bool,
+    /// A transfer is in flight (started, not yet waited for).
+    busy: bool,
+    /// DC changes while a transfer was in flight (a real panel would take its last bytes
+    /// with the wrong level): the sender must flush first.
+    dc_changed_in_flight: u32,
 }
 
-impl DmaLike {
-    fn new() -> Self {
-        let mut model = St7789Model::new();
-        for &(cmd, params, delay_ms) in init_sequence() {
-            model.feed(false, &[cmd]);
-            model.feed(true, params);
-            model.advance_ns(delay_ms as u64 * 1_000_000);
-        }
-        DmaLike {
-            model,
-            coherence: Coherence::new(),
-            line: [0; 480],
+/// A DMA engine on the panel model: a transfer's bytes reach the panel when the next send or
+/// flush waits for it, with the DC level it started with; like a HAL's transfer it keeps the
+/// buffer until the next send hands it back. It refuses the sends numbered in `refuse`
+/// (counted from 0), as an engine reporting an error would.
+struct ModelLink {
+    panel: Rc<RefCell<Panel>>,
+    /// The last transfer's buffer, the DC level it started with, and whether it is done.
+    last: Option<(RowBuf<480>, bool, bool)>,
+    sends: u32,
+    refuse: Vec<u32>,
+}
+
+impl ModelLink {
+    /// Waits for the transfer in flight: its bytes reach the panel.
+    fn complete(&mut self) {
+        if let Some((buf, dc, done @ false)) = &mut self.last {
+            let mut panel = self.panel.borrow_mut();
+            panel.model.feed(*dc, &buf[..]);
+            panel.busy = false;
+            *done = true;
         }
     }
 }
 
-impl<N> RowSink<N> for DmaLike {
-    type Error = ();
-    fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), ()> {
-        let n = encode_row(row.color, &mut self.line);
-        match self.coherence.row(row.y, &self.line[..n]) {
-            RowAction::Skip => return Ok(()),
-            RowAction::Continue => {}
-            RowAction::Open { caset } => {
-                let model = &mut self.model;
-                open_run(&WINDOW, row.y, caset, |c, p| -> Result<(), ()> {
-                    model.feed(false, &[c]);
-                    model.feed(true, p);
-                    Ok(())
-                })?;
-            }
+impl DmaLink<480> for ModelLink {
+    fn send(&mut self, buf: RowBuf<480>) -> Result<Option<RowBuf<480>>, RowBuf<480>> {
+        let n = self.sends;
+        self.sends += 1;
+        self.complete();
+        if self.refuse.contains(&n) {
+            return Err(buf);
         }
-        self.model.feed(true, &self.line[..n]);
+        let mut panel = self.panel.borrow_mut();
+        panel.busy = true;
+        Ok(self.last.replace((buf, panel.dc, false)).map(|(b, ..)| b))
+    }
+    fn flush(&mut self) {
+        self.complete();
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        let mut panel = self.panel.borrow_mut();
+        assert!(!panel.busy, "bytes written past a transfer in flight");
+        let dc = panel.dc;
+        panel.model.feed(dc, bytes);
+    }
+}
+
+struct Dc(Rc<RefCell<Panel>>);
+
+impl embedded_hal::digital::ErrorType for Dc {
+    type Error = core::convert::Infallible;
+}
+
+impl embedded_hal::digital::OutputPin for Dc {
+    fn set_low(&mut self) -> Result<(), Self::Error> {
+        self.set(false);
         Ok(())
     }
+    fn set_high(&mut self) -> Result<(), Self::Error> {
+        self.set(true);
+        Ok(())
+    }
+}
+
+impl Dc {
+    fn set(&mut self, level: bool) {
+        let mut panel = self.0.borrow_mut();
+        if panel.busy && panel.dc != level {
+            panel.dc_changed_in_flight += 1;
+        }
+        panel.dc = level;
+    }
+}
+
+type Dma = DmaRows<ModelLink, Dc, 480, 240>;
+
+/// The firmwares' DMA sink on an initialised panel model, refusing the sends in `refuse`.
+fn dma_on_model(refuse: Vec<u32>) -> (Dma, Rc<RefCell<Panel>>) {
+    let mut model = St7789Model::new();
+    for &(cmd, params, delay_ms) in init_sequence() {
+        model.feed(false, &[cmd]);
+        model.feed(true, params);
+        model.advance_ns(delay_ms as u64 * 1_000_000);
+    }
+    let panel = Rc::new(RefCell::new(Panel {
+        model,
+        dc: true,
+        busy: false,
+        dc_changed_in_flight: 0,
+    }));
+    let link = ModelLink {
+        panel: panel.clone(),
+        last: None,
+        sends: 0,
+        refuse,
+    };
+    let buf = || -> RowBuf<480> { Box::leak(Box::new([0u8; 480])) };
+    let dma = DmaRows::new(link, Dc(panel.clone()), WINDOW, buf(), buf()).expect("window");
+    (dma, panel)
 }
 
 /// Every row to a frame buffer and to both coherent senders, so one render feeds all three.
 struct Tee<'a, S> {
     full: FrameBuffer<'a>,
     coherent: &'a mut S,
-    dma: &'a mut DmaLike,
+    dma: &'a mut Dma,
 }
 
 impl<N, S: RowSink<N>> RowSink<N> for Tee<'_, S>
@@ -76,7 +147,8 @@ where
     fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), ()> {
         self.full.write_row(row).map_err(|_| ())?;
         self.coherent.write_row(row).expect("coherent sink");
-        self.dma.write_row(row)
+        let Ok(()) = self.dma.write_row(row);
+        Ok(())
     }
 }
 
@@ -88,14 +160,15 @@ fn two_hundred_frames_of_each_demo_equal_a_full_render_every_frame() {
         let mut rows =
             CoherentRows::<_, _, 480, 240>::new(bus.spi(), bus.dc(), WINDOW).expect("window");
         rows.init(&mut bus.delay()).expect("init");
-        let mut dma = DmaLike::new();
+        let (mut dma, panel) = dma_on_model(Vec::new());
         let (mut coherent_bytes, mut dma_bytes) = (0u64, 0u64);
         let (mut least_rows, mut partial_frames) = (u16::MAX, 0);
         for frame in 0..200u32 {
             // The firmware's angles (0.03 rad a frame).
             let angle = frame as f32 * 0.03;
             let mut want = vec![Rgb565::BLACK; 240 * 240];
-            let (before, dma_before) = (bus.model().wire_bytes(), dma.model.wire_bytes());
+            let (before, dma_before) =
+                (bus.model().wire_bytes(), panel.borrow().model.wire_bytes());
             rows.begin_frame();
             zrow_scenes::with_demo::<Q16_16, _>(name, angle, |scene, cfg, _| {
                 let mut tee = Tee {
@@ -106,20 +179,27 @@ fn two_hundred_frames_of_each_demo_equal_a_full_render_every_frame() {
                 renderer.render(scene, cfg, &mut tee).expect("render");
             })
             .expect("a demo scene");
+            // The last row leaves while the next frame renders: wait for it here.
+            dma.flush();
             assert_eq!(
                 bus.model().read_window(&WINDOW),
                 want,
                 "{name} frame {frame}"
             );
-            assert_eq!(
-                dma.model.read_window(&WINDOW),
-                want,
-                "{name} frame {frame} (DMA)"
+            let panel = panel.borrow();
+            let got = panel.model.read_window(&WINDOW);
+            let wrong: Vec<usize> = (0..got.len()).filter(|&i| got[i] != want[i]).collect();
+            assert!(
+                wrong.is_empty(),
+                "{name} frame {frame} (DMA): {} pixels differ, the first at row {}",
+                wrong.len(),
+                wrong.first().map_or(0, |i| i / 240)
             );
             let (sent, dma_sent) = (
                 bus.model().wire_bytes() - before,
-                dma.model.wire_bytes() - dma_before,
+                panel.model.wire_bytes() - dma_before,
             );
+            assert_eq!(dma.rows_sent, u32::from(rows.rows_sent()), "{name} {frame}");
             // Both senders send the same bytes (the same decisions, the same commands).
             assert_eq!(sent, dma_sent, "{name} frame {frame}");
             if frame == 0 {
@@ -138,7 +218,17 @@ fn two_hundred_frames_of_each_demo_equal_a_full_render_every_frame() {
             "{:?}",
             bus.model().errors()
         );
-        assert!(dma.model.errors().is_empty(), "{:?}", dma.model.errors());
+        let panel = panel.borrow();
+        assert!(
+            panel.model.errors().is_empty(),
+            "{:?}",
+            panel.model.errors()
+        );
+        assert_eq!(
+            panel.dc_changed_in_flight, 0,
+            "{name}: DC changed under a transfer"
+        );
+        assert_eq!(dma.dropped, 0);
         let full = 200 * FULL_FRAME_BYTES;
         eprintln!(
             "{name}: {} bytes a frame coherent vs {FULL_FRAME_BYTES} whole ({:.0} %), \
@@ -228,6 +318,43 @@ fn only_changed_rows_go_and_an_error_or_a_command_sends_the_next_frame_whole() {
         "{:?}",
         bus.model().errors()
     );
+}
+
+#[test]
+fn a_refused_dma_transfer_loses_its_row_and_sends_the_next_frame_whole() {
+    // Frame 0 is 240 sends (0..240); frame 1 changes rows 10..30 (sends from 240 on): the
+    // engine refuses the third of them, row 12.
+    let (mut dma, panel) = dma_on_model(vec![242]);
+    let mut frame = |band: core::ops::Range<u16>| {
+        let frame = frame_with(band);
+        let Ok(()) = send_frame(&mut dma, &frame);
+        dma.flush();
+        let panel = panel.borrow();
+        assert_eq!(panel.dc_changed_in_flight, 0);
+        assert!(
+            panel.model.errors().is_empty(),
+            "{:?}",
+            panel.model.errors()
+        );
+        let got = panel.model.read_window(&WINDOW);
+        let wrong: Vec<usize> = (0..got.len())
+            .filter(|&i| got[i] != frame[i / 240][i % 240])
+            .map(|i| i / 240)
+            .collect();
+        (
+            dma.rows_sent,
+            dma.dropped,
+            wrong.first().copied(),
+            wrong.len(),
+        )
+    };
+    assert_eq!(frame(10..20), (240, 0, None, 0));
+    // Row 12 stays white on the panel (it should now be black): one row wrong; every row
+    // after it goes, since the signatures are forgotten.
+    assert_eq!(frame(20..30), (2 + 227, 1, Some(12), 240));
+    // Then everything again, and the panel is right.
+    assert_eq!(frame(20..30), (240, 1, None, 0));
+    assert_eq!(frame(20..30), (0, 1, None, 0));
 }
 
 #[test]

@@ -1,7 +1,8 @@
 //! The whole-frame protocol of a DMA sender, checked against the panel model: the init table,
 //! then per frame the window (CASET, RASET), RAMWR and `height` rows of `encode_row` bytes
-//! (each row one data write, as one DMA transfer sends it). The firmware sends whole frames
-//! like this only at first and after an error; `coherence.rs` checks its changed-rows sending. Two consecutive frames of a turning standard
+//! (each row one data write, as one DMA transfer sends it). The firmwares' sink
+//! (`zrow_st7789::dma::DmaRows`) sends whole frames like this only at first and after an
+//! error; `coherence.rs` checks it, changed rows and all. Two consecutive frames of a turning standard
 //! scene must each equal the core's render bit for bit, and the model must see no protocol
 //! error.
 
@@ -11,7 +12,7 @@ use zrow_st7789::command::{CASET, RAMWR, RASET};
 use zrow_st7789::model::St7789Model;
 use zrow_st7789::{encode_row, init_sequence, Window};
 
-/// What `firmware/src/dma_rows.rs` sends for each row: its big-endian bytes, DC high.
+/// A whole-frame DMA sender: per frame the window, then each row's big-endian bytes, DC high.
 struct DmaLike<'a> {
     model: &'a mut St7789Model,
     line: [u8; 480],

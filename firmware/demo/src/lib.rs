@@ -1,0 +1,101 @@
+//! The demo both board firmwares run: the simulator's demo scenes (`zrow_scenes::with_demo`,
+//! const data in flash) turning in Q16.16, each for [`FRAMES_PER_SCENE`] frames, drawn by the
+//! board's renderer into the board's DMA row sink (`zrow_st7789::dma::DmaRows`); every 32
+//! frames a defmt log line with the cycles of the last frame (render, SPI wait, rows sent,
+//! frames per second). Each board gives its renderer (sized to the scenes it shows), its DMA
+//! link, its clock and its list of scenes; everything else is here, once.
+#![no_std]
+
+use cortex_m::peripheral::DWT;
+use embedded_hal::digital::OutputPin;
+use zrow::{Renderer, Q16_16};
+use zrow_st7789::dma::{DmaLink, DmaRows};
+
+/// Bytes in one row (240 RGB565 pixels).
+pub const ROW_BYTES: usize = 480;
+/// Rows in a frame.
+pub const ROWS: usize = 240;
+/// The panel window the demo draws into: a 240×240 module.
+pub const WINDOW: zrow_st7789::Window = zrow_st7789::Window::new(240, 240);
+
+/// The DMA row sink of a demo board.
+pub type Rows<L, DC> = DmaRows<L, DC, ROW_BYTES, ROWS>;
+
+/// Frames per demo scene. A static read at every frame, so a debugger, or the
+/// board-in-the-loop test (`emu/board`), can shorten the scenes without another build.
+#[no_mangle]
+pub static FRAMES_PER_SCENE: u32 = 256;
+
+/// Called after every frame with its number, once its last row is handed to the DMA engine:
+/// a place for a debugger's breakpoint, and the frame marker of the board-in-the-loop test.
+/// Does nothing.
+#[no_mangle]
+#[inline(never)]
+pub extern "C" fn zrow_frame_done(frame: u32) {
+    core::hint::black_box(frame);
+}
+
+/// A panic (none is expected: the core reports bad input as errors) logs where it happened
+/// and stops on a fault. Only the location is logged: the message would pull in `core::fmt`,
+/// several kilobytes of flash.
+#[panic_handler]
+fn panic(info: &core::panic::PanicInfo) -> ! {
+    cortex_m::interrupt::disable();
+    match info.location() {
+        Some(at) => defmt::error!("panic at {=str}:{=u32}", at.file(), at.line()),
+        None => defmt::error!("panic"),
+    }
+    cortex_m::asm::udf()
+}
+
+/// Shows `scenes` (names of `zrow_scenes::DEMOS`) in turn forever, each [`FRAMES_PER_SCENE`]
+/// frames, turning 0.03 rad a frame. `sysclk_hz` converts the cycle counts of the log (DWT's
+/// cycle counter, which the board enables) to frames per second. A frame the renderer refuses
+/// (a capacity error) is logged and not sent: the panel keeps its last frame.
+pub fn run<R, L, DC>(
+    renderer: &mut R,
+    rows: &mut Rows<L, DC>,
+    scenes: &[&'static str],
+    sysclk_hz: u32,
+) -> !
+where
+    R: Renderer<Q16_16>,
+    L: DmaLink<ROW_BYTES>,
+    DC: OutputPin,
+{
+    defmt::info!("zrow: renderer {} bytes of RAM, DMA rows", R::RAM_BYTES);
+    let mut frame = 0u32;
+    loop {
+        // SAFETY: a plain read of an immutable static (volatile: a debugger may change it).
+        let per_scene = unsafe { core::ptr::read_volatile(&FRAMES_PER_SCENE) }.max(1);
+        let Some(&name) = scenes.get((frame / per_scene) as usize % scenes.len().max(1)) else {
+            defmt::error!("no scenes to show");
+            loop {
+                cortex_m::asm::wfi();
+            }
+        };
+        let angle = frame as f32 * 0.03;
+        rows.wait_cycles = 0;
+        let t0 = DWT::cycle_count();
+        let result = zrow_scenes::with_demo::<Q16_16, _>(name, angle, |scene, cfg, _| {
+            renderer.render(scene, cfg, rows)
+        });
+        let cycles = DWT::cycle_count().wrapping_sub(t0);
+        match result {
+            Some(Ok(stats)) if frame.is_multiple_of(32) => defmt::info!(
+                "{=str}: {} polygons, render {} cyc, SPI wait {} cyc, {} of 240 rows sent, {} fps",
+                name,
+                stats.polygons,
+                cycles.wrapping_sub(rows.wait_cycles),
+                rows.wait_cycles,
+                rows.rows_sent,
+                sysclk_hz / cycles.max(1)
+            ),
+            Some(Ok(_)) => {}
+            Some(Err(e)) => defmt::error!("{=str}: {}", name, e),
+            None => defmt::error!("no scene {=str}", name),
+        }
+        zrow_frame_done(frame);
+        frame = frame.wrapping_add(1);
+    }
+}
