@@ -774,6 +774,62 @@ fn scaled_rotation<N: Scalar>(c: &Affine<N>, math: crate::math::MathLib) -> Opti
     (ok && mean > N::ZERO).then(|| math.rsqrt(mean))
 }
 
+/// A model face some of whose corners did not project (outside the view volume or the guard
+/// band): its corners again, clipped in clip space if they need it (or, with no room in the
+/// vertex buffer, projected here if they do not), then emitted with the colour `color` gives.
+/// Out of line: its clipping buffers (about a kilobyte on a 32-bit core) stay off the stack of
+/// the common path, where every corner projected.
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn emit_clipped<N: Scalar, I: MeshIndex>(
+    mesh: &Mesh<'_, N, I>,
+    face: &Face<'_, I>,
+    this: u32,
+    mv: &Affine<N>,
+    proj: &Projector<N>,
+    cfg: &Config,
+    color: impl FnOnce() -> Rgb565,
+    buf: &mut VertexBuffer<'_, N>,
+    f: &mut dyn FnMut(&Polygon<'_, N>) -> Result<(), Error>,
+) -> Result<(), Error> {
+    let mut clip: Poly<ClipV<N>> = Vec::new();
+    for &i in face.indices {
+        let p = mesh.vertices[i.index()];
+        let v = mv
+            .apply_checked(p)
+            .filter(|v| v.x.is_finite() && v.y.is_finite() && v.z.is_finite())
+            .ok_or(Error::NonFinite { face: this })?;
+        let _ = clip.push(proj.clip(v)); // fits: checked against MAX_FACE_VERTICES
+    }
+    let unclipped = clip.iter().all(|c| proj.inside(c));
+    if !unclipped {
+        proj.clip_polygon(&mut clip, this)?;
+    }
+    if clip.len() < 3 {
+        return Ok(());
+    }
+    let mut v = [RasterVertex::default(); MAX_POLYGON_VERTICES];
+    for (d, c) in v.iter_mut().zip(&clip) {
+        *d = proj.screen(c).ok_or(Error::NonFinite { face: this })?;
+    }
+    let v = &v[..clip.len()];
+    let area2 = signed_area2(v);
+    if dropped(area2, cfg) {
+        return Ok(());
+    }
+    let out = Out {
+        color: color(),
+        alpha: face.alpha,
+        face: this,
+        area2,
+    };
+    if unclipped {
+        emit_unclaimed(buf, v, out, f)
+    } else {
+        emit_new(buf, v, out, f)
+    }
+}
+
 impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
     fn polygons(
         &self,
@@ -866,44 +922,8 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
                     emit_indexed(buf, &mut corners[..n], out, f)?;
                     continue;
                 }
-                // The face's corners again: clipped in clip space if they need it (or, with
-                // no room in the buffer, projected here if they do not).
-                let mut clip: Poly<ClipV<N>> = Vec::new();
-                for &i in face.indices {
-                    let p = mesh.vertices[i.index()];
-                    let v = mv
-                        .apply_checked(p)
-                        .filter(|v| v.x.is_finite() && v.y.is_finite() && v.z.is_finite())
-                        .ok_or(Error::NonFinite { face: this })?;
-                    let _ = clip.push(proj.clip(v)); // fits: checked against MAX_FACE_VERTICES
-                }
-                let unclipped = clip.iter().all(|c| proj.inside(c));
-                if !unclipped {
-                    proj.clip_polygon(&mut clip, this)?;
-                }
-                if clip.len() < 3 {
-                    continue;
-                }
-                let mut v = [RasterVertex::default(); MAX_POLYGON_VERTICES];
-                for (d, c) in v.iter_mut().zip(&clip) {
-                    *d = proj.screen(c).ok_or(Error::NonFinite { face: this })?;
-                }
-                let v = &v[..clip.len()];
-                let area2 = signed_area2(v);
-                if dropped(area2, cfg) {
-                    continue;
-                }
-                let out = Out {
-                    color: lighting.color(face.color, normal(k, face)),
-                    alpha: face.alpha,
-                    face: this,
-                    area2,
-                };
-                if unclipped {
-                    emit_unclaimed(buf, v, out, f)?;
-                } else {
-                    emit_new(buf, v, out, f)?;
-                }
+                let color = || lighting.color(face.color, normal(k, face));
+                emit_clipped(mesh, face, this, &mv, &proj, cfg, color, buf, f)?;
             }
         }
         Ok(())

@@ -353,7 +353,11 @@ fn plane_i64<N: Copy>(
 }
 
 /// The fixed-point depth plane of [`Scalar::depth_plane`] in 128-bit integers (any input):
-/// `(z_ref, dzdx, dzdy)` as raw bits, or `None` for zero area.
+/// `(z_ref, dzdx, dzdy)` as raw bits, or `None` for zero area. Out of line and cold: it runs
+/// only when [`plane_i64`] does not fit, and its 128-bit temporaries (about a kilobyte of
+/// stack on a 32-bit core) then stay out of every caller's frame.
+#[inline(never)]
+#[cold]
 fn plane_i128<N: Copy>(
     v: &[RasterVertex<N>],
     s: u32,

@@ -97,11 +97,14 @@ impl Slot for u32 {
     }
 }
 
-/// One polygon of the table: its corners in the vertex buffer, its colour and its rows.
+/// One polygon of the table: its corners in the vertex buffer, its colour and its first row
+/// (14 bytes with `u16` slots). Its last row is not kept: [`last_row_of`] finds it from its
+/// corners the twice it is needed (counting the active list, and, for a polygon of more than
+/// three corners, activating it).
 #[derive(Clone, Copy, Debug)]
 struct Polygon<S> {
-    /// Up to [`INDEXED_CORNERS`] corners as slots of the vertex buffer; more are a run of
-    /// consecutive slots from `corners[0]`.
+    /// Up to [`INDEXED_CORNERS`] corners as slots of the vertex buffer, from the top one;
+    /// more are a run of consecutive slots from `corners[0]`.
     corners: [S; INDEXED_CORNERS],
     /// How many corners.
     len: u8,
@@ -109,7 +112,6 @@ struct Polygon<S> {
     clockwise: bool,
     color: Rgb565,
     first_row: i16,
-    last_row: i16,
 }
 
 /// A polygon's corners in order, read from the vertex buffer.
@@ -393,6 +395,13 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         let (mut polys, mut uncached) = (0u32, false);
         let table = &mut self.polygons;
         let mut buf = VertexBuffer::new(&mut self.vertices);
+        // The active list's difference array (see `max_active`), filled as polygons enter the
+        // table while their rows are at hand, in the colour row (free until the first row is
+        // drawn) when the frame is no taller than it.
+        let height = cfg.height as usize;
+        let counted = height <= W;
+        let diff = &mut self.intensity[..height.min(W)];
+        diff.fill(count_of(0));
         scene.polygons(cfg, &mut buf, &mut |poly| {
             let n = poly.corners.len();
             let at = |k: usize| &poly.vertices[poly.corners[k] as usize];
@@ -435,8 +444,15 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                     clockwise: o.clockwise,
                     color: poly.color,
                     first_row: o.first_row,
-                    last_row: o.last_row,
                 });
+                if counted {
+                    let (first, after) = (o.first_row as usize, o.last_row as usize + 1);
+                    let c = &mut diff[first];
+                    *c = count_of(count(*c).wrapping_add(1));
+                    if let Some(c) = diff.get_mut(after) {
+                        *c = count_of(count(*c).wrapping_sub(1));
+                    }
+                }
             }
             Ok(())
         })?;
@@ -451,8 +467,8 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         if uncached || buf.needed() > V {
             return Err(over(Table::Vertices, buf.needed() as u32, V));
         }
-        self.bucket(cfg.height as usize);
-        let max_active = self.max_active(cfg.height as usize)?;
+        let max_active = self.max_active(cfg, counted)?;
+        self.bucket(cfg);
         self.edges = 0;
         Ok(FrameStats {
             polygons: polys,
@@ -464,12 +480,14 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
     /// Orders the polygon table by first row into `order`, scene order within a row: a
     /// counting sort whose counters borrow the colour row (free until the first row is drawn),
     /// or, for a frame taller than the row is wide, a sort of the polygon numbers.
-    fn bucket(&mut self, height: usize) {
+    fn bucket(&mut self, cfg: &Config) {
+        let height = cfg.height as usize;
         let (polygons, order) = (&self.polygons, &mut self.order);
+        let first = |p: &Polygon<S>| p.first_row as usize;
         order.clear();
         if height > W {
             order.extend(0..polygons.len() as u16);
-            heapsort_by_key(order, |i| (polygons[i as usize].first_row, i));
+            heapsort_by_key(order, |i| (first(&polygons[i as usize]), i));
             return;
         }
         // The counters are u16 (the polygon table holds fewer than 2^16), kept as Rgb565's
@@ -479,7 +497,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         let of = |v: u16| Rgb565::from(RawU16::new(v));
         count.fill(of(0));
         for p in polygons {
-            let c = &mut count[p.first_row as usize];
+            let c = &mut count[first(p)];
             *c = of(raw(*c) + 1);
         }
         let mut sum = 0u16;
@@ -490,7 +508,7 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         }
         order.extend(core::iter::repeat_n(0, polygons.len()));
         for (i, p) in polygons.iter().enumerate() {
-            let c = &mut count[p.first_row as usize];
+            let c = &mut count[first(p)];
             order[raw(*c) as usize] = i as u16;
             *c = of(raw(*c) + 1);
         }
@@ -498,11 +516,21 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
 
     /// Most polygons active in one row, checked against `A`: a difference array over the rows
     /// (+1 where a polygon starts, −1 after it ends), summed top to bottom. Its counters
-    /// borrow the colour row, as [`Self::bucket`]'s do, a row's width of rows at a time.
-    fn max_active(&mut self, height: usize) -> Result<u32, Error> {
-        let raw = |c: Rgb565| RawU16::from(c).into_inner();
-        let of = |v: u16| Rgb565::from(RawU16::new(v));
+    /// borrow the colour row, as [`Self::bucket`]'s do. `counted`: [`Self::prepare`] filled it
+    /// as the polygons entered the table (a frame no taller than the row); otherwise it is
+    /// built here, a row's width of rows at a time, from the polygons' corners.
+    fn max_active(&mut self, cfg: &Config, counted: bool) -> Result<u32, Error> {
+        let height = cfg.height as usize;
+        let (raw, of) = (count, count_of);
         let (mut max, mut base) = (0u16, 0usize);
+        if counted {
+            let mut running = 0u16;
+            for c in &self.intensity[..height] {
+                running = running.wrapping_add(raw(*c));
+                max = max.max(running);
+            }
+            base = height;
+        }
         while base < height {
             let len = (height - base).min(W);
             let count = &mut self.intensity[..len];
@@ -510,7 +538,11 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             // Polygons already open at this chunk's first row.
             let mut running = 0u16;
             for p in &self.polygons {
-                let (first, last) = (p.first_row as usize, p.last_row as usize);
+                let ring = Ring {
+                    vertices: &self.vertices,
+                    polygon: p,
+                };
+                let (first, last) = (p.first_row as usize, last_row_of(&ring, cfg) as usize);
                 if first < base {
                     running += (last >= base) as u16;
                 } else if first < base + len {
@@ -609,10 +641,10 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
     /// edges found down each side from its top vertex.
     #[inline(never)]
     fn activate(&mut self, i: u16, y: i32, cfg: &Config, want_depth: bool) {
-        let p = self.polygons[i as usize];
+        let p = &self.polygons[i as usize];
         let ring = Ring {
             vertices: &self.vertices,
-            polygon: &p,
+            polygon: p,
         };
         // Clockwise on the display: forward from the top runs down the right side.
         let walks = if ring.len() == 3 {
@@ -641,7 +673,12 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         a.left = left;
         a.right = right;
         a.planed = false;
-        a.last_row = p.last_row;
+        // A triangle's first two edges: one of them ends at its lowest corner, its last row.
+        a.last_row = if ring.len() == 3 {
+            left.last.max(right.last)
+        } else {
+            last_row_of(&ring, cfg) as i16
+        };
         a.poly = i;
         a.color = p.color;
         if want_depth || cue.is_some() {
@@ -1449,6 +1486,35 @@ impl<N: Scalar, S: Slot> Planes<'_, N, S> {
     }
 }
 
+/// A counter kept in the colour row (the counting sort's and the active count's): the
+/// `Rgb565`'s raw storage, a free conversion either way.
+#[inline]
+fn count(c: Rgb565) -> u16 {
+    RawU16::from(c).into_inner()
+}
+
+/// [`count`]'s inverse.
+#[inline]
+fn count_of(v: u16) -> Rgb565 {
+    Rgb565::from(RawU16::new(v))
+}
+
+/// A polygon's last row: the last whose sample line it covers, clamped to the frame, as its
+/// outline found it when it entered the table (`raster::outline_with_area`).
+fn last_row_of<N: Copy, S: Slot>(ring: &Ring<'_, N, S>, cfg: &Config) -> i32 {
+    let bottom = if ring.len() <= INDEXED_CORNERS {
+        // Up to four corners as slots.
+        let c = &ring.polygon.corners[..ring.len()];
+        c.iter().fold(i32::MIN, |m, s| {
+            m.max(ring.vertices.get(s.slot()).map_or(m, |v| v.y))
+        })
+    } else {
+        (0..ring.len()).fold(i32::MIN, |m, k| m.max(ring.get(k).y))
+    };
+    let (s, h) = (cfg.subpixel_bits as u32, cfg.half());
+    row_at_or_below(bottom, s, h).min(cfg.height as i32) - 1
+}
+
 /// The top-left vertex of a polygon (least y, then least x): where both its sides start.
 /// A polygon of up to [`INDEXED_CORNERS`] corners is recorded from it ([`top_first`]).
 fn top_of<N: Copy, S: Slot>(ring: &Ring<'_, N, S>) -> usize {
@@ -1628,7 +1694,7 @@ mod tests {
             };
             let (formula, size) = (ram_bytes::<N>(&req), Scanline::<N, W, V, P, A>::RAM_BYTES);
             assert!(
-                formula <= size && size <= formula + 24,
+                formula <= size && size <= formula + 32,
                 "{formula} vs {size}"
             );
         }
