@@ -5,8 +5,8 @@
 # (it reads emu/target/bench-m4.txt, which `bash emu/run.sh m4` writes, and
 # target/board/shipped.txt, which `bash emu/board/run.sh` writes).
 #
-# Checked: the firmware's flash and static RAM, the bytes per frame on the wire and the board in
-# the loop's frame rates ("On the board"), the converted torus's scan-line RAM ("Bring your own model"), the emulated cube counts of cull-only and the
+# Checked: both firmwares' flash and static RAM, the bytes per frame on the wire and the board
+# in the loop's frame rates and stack peaks ("On the board"), the converted torus's scan-line RAM ("Bring your own model"), the emulated cube counts of cull-only and the
 # scan-line method ("Methods"), and the scan-line RAM column of the methods table against
 # docs/methods/foley.md (which its own command writes).
 set -euo pipefail
@@ -26,21 +26,27 @@ expect() { # what, text that must be in the README
   fi
 }
 
-# Firmware flash and static RAM.
-out="$(bash scripts/firmware-size.sh 2>&1 | grep '^firmware: flash')"
-flash="$(echo "$out" | sed -E 's/^firmware: flash ([0-9]+) bytes.*/\1/')"
-ram="$(echo "$out" | sed -E 's/.*static RAM ([0-9]+) bytes.*/\1/')"
-# Flash in KB to a tenth, within 0.3 KB: its exact bytes move with the checkout's path, which
-# the panic locations of the crates outside the firmware's workspace carry (a clone in /tmp/ci
-# measured 0.1 KB less than one in /work/main).
-quoted="$(sed -nE 's/.*at this commit ([0-9]+\.[0-9]) KB of.*/\1/p' "$readme" | head -1)"
-if [ -n "$quoted" ] && awk -v q="$quoted" -v f="$flash" 'BEGIN { d = q - f / 1024; exit !(d <= 0.3 && d >= -0.3) }'; then
-  echo "check-figures: firmware flash: \"$quoted KB\" is within 0.3 KB of $flash bytes"
-else
-  echo "check-figures: firmware flash: the README says \"${quoted:-nothing}\" KB, measured $(awk -v f="$flash" 'BEGIN { printf "%.1f", f / 1024 }') KB; update it" >&2
-  fail=1
-fi
-expect "firmware static RAM" "$(thousands "$ram") bytes of static RAM"
+# Both firmwares' flash and static RAM.
+sizes="$(bash scripts/firmware-size.sh 2>&1 | grep ': flash')"
+size_of() { # board name, the README's words before the flash figure
+  local out flash ram quoted
+  out="$(grep "^$1: flash" <<<"$sizes")"
+  flash="$(echo "$out" | sed -E 's/^[a-z]+: flash ([0-9]+) bytes.*/\1/')"
+  ram="$(echo "$out" | sed -E 's/.*static RAM ([0-9]+) bytes.*/\1/')"
+  # Flash in KB to a tenth, within 0.3 KB: its exact bytes move with the checkout's path, which
+  # the panic locations of the crates outside the firmware's workspace carry (a clone in /tmp/ci
+  # measured 0.1 KB less than one in /work/main).
+  quoted="$(sed -nE "s/.*$2 ([0-9]+\.[0-9]) KB of.*/\1/p" "$readme" | head -1)"
+  if [ -n "$quoted" ] && awk -v q="$quoted" -v f="$flash" 'BEGIN { d = q - f / 1024; exit !(d <= 0.3 && d >= -0.3) }'; then
+    echo "check-figures: $1 flash: \"$quoted KB\" is within 0.3 KB of $flash bytes"
+  else
+    echo "check-figures: $1 flash: the README says \"${quoted:-nothing}\" KB, measured $(awk -v f="$flash" 'BEGIN { printf "%.1f", f / 1024 }') KB; update it" >&2
+    fail=1
+  fi
+  expect "$1 static RAM" "$(thousands "$ram") bytes of static RAM"
+}
+size_of firmware "at this commit"
+size_of bluepill "at this commit the Blue Pill's"
 
 # Bytes on the wire per demo frame, whole and changed rows only (the README's table, as the
 # example prints it).
@@ -58,19 +64,23 @@ signed="$(sink "encoding 240 rows and")"
 expect "board sink, encoding" "takes $(thousands "$encode") instructions"
 expect "board sink, signatures" "$(thousands $((signed - encode))) more (about $(awk -v d=$((signed - encode)) 'BEGIN { printf "%.1f", d / 1e5 }') ms"
 
-# The board in the loop's table (emu/board/run.sh, which CI runs first, keeps it).
-board=target/board/shipped.txt
-if [ -s "$board" ]; then
-  while IFS= read -r line; do
-    case "$line" in
-      "| interlocked"* | "| cube"* | "| mesh1k"*)
-        expect "board in the loop, $(echo "$line" | cut -d'|' -f2 | xargs)" "$line" ;;
-    esac
-  done <"$board"
-else
-  echo "check-figures: $board missing: run bash emu/board/run.sh first" >&2
-  fail=1
-fi
+# The board in the loop's tables and stack peaks (emu/board/run.sh, which CI runs first, keeps
+# them).
+for board in target/board/shipped.txt target/board/bluepill.txt; do
+  if [ -s "$board" ]; then
+    while IFS= read -r line; do
+      case "$line" in
+        "| interlocked"* | "| cube"* | "| mesh1k"*)
+          expect "board in the loop, $(basename "$board" .txt), $(echo "$line" | cut -d'|' -f2 | xargs)" "$line" ;;
+      esac
+    done <"$board"
+    peak="$(sed -nE 's/.*stack peak ([0-9]+) bytes.*/\1/p' "$board")"
+    expect "stack peak, $(basename "$board" .txt)" "$(thousands "$peak") bytes"
+  else
+    echo "check-figures: $board missing: run bash emu/board/run.sh first" >&2
+    fail=1
+  fi
+done
 
 # The converted torus's scan-line RAM (the README's convert command).
 tmp="$(mktemp -d)"

@@ -3,7 +3,10 @@
 # --release` flashes) in the Unicorn engine with a model of the STM32F411 peripherals it uses
 # (emu/board/f411.py), decodes what it clocks out of SPI through the ST7789 panel model, checks
 # every frame against the host's render of the same demo frame bit for bit, and prints the
-# estimated frames per second per demo scene (instructions taken as cycles at 100 MHz).
+# estimated frames per second per demo scene (instructions taken as cycles at 100 MHz) and the
+# stack's deepest point. Then the same for the Blue Pill's firmware (firmware/bluepill,
+# emu/board/f103.py: a Cortex-M3 at 72 MHz with 20 KB of SRAM; a stack that reaches the
+# statics fails the run).
 #
 # Then the same check must FAIL on deliberately broken firmware, built from copies of firmware/
 # with one change each (so the check is known to catch them):
@@ -13,7 +16,8 @@
 #   no-inversion   the panel's colour inversion (INVON) left out of its initialisation.
 #
 # usage: emu/board/run.sh [FRAMES_PER_SCENE]   (default 3: 9 frames, the three demo scenes)
-# Writes target/board/: the stream files, shipped.txt (the table), the mutants' logs.
+# Writes target/board/: the stream files, shipped.txt and bluepill.txt (the tables), the
+# mutants' logs.
 # Installs python3 and python3-venv with apt-get if missing, and Unicorn, capstone and
 # pyelftools (pinned)
 # into emu/board/.venv from PyPI.
@@ -68,6 +72,16 @@ echo "== the shipped firmware: $frames frames, $per_scene per demo scene"
 # Its table is kept for scripts/check-figures.sh (the README quotes it).
 # Its own target directory: the ELF `cargo run --release` flashes.
 check "$root/firmware" shipped "$root/firmware/target" | tee "$out/shipped.txt"
+
+echo "== the Blue Pill (STM32F103C8): its shipped firmware, $((2 * per_scene)) frames of its two scenes"
+bluepill="$root/firmware/bluepill"
+(cd "$bluepill" && cargo build --release -q)
+bp_elf="$bluepill/target/thumbv7m-none-eabi/release/zrow-bluepill"
+"$py" "$here/f103.py" "$bp_elf" --self-test
+# Its table and stack peak are kept for scripts/check-figures.sh (the README quotes them).
+{ "$py" "$here/f103.py" "$bp_elf" "$out/bluepill.stream" --frames-per-scene "$per_scene" \
+    --frames $((2 * per_scene)) --scenes interlocked,cube &&
+  "$replay" "$out/bluepill.stream"; } | tee "$out/bluepill.txt"
 
 fail=0
 mutant() { # name, then a python snippet editing the text of file $2 in the copy
@@ -128,4 +142,28 @@ mutant half-row zrow-st7789/src/dma.rs \
   'let (_, signature) = encode_row_signed(row.color, buf);=>let (_, signature) = encode_row_signed(row.color, buf); crate::encode_row(&[zrow::pixelcolor::Rgb565::new(0, 0, 0); 120], &mut buf[240..]);'
 mutant no-inversion src/main.rs \
   '.invert_colors(ColorInversion::Inverted)=>'
+
+# The Blue Pill's stack check must catch a stack that reaches the statics: a copy whose
+# renderer is sized with a 20 % margin (2 KB more of .bss, still linking in 20 KB).
+echo "== mutant bluepill-stack: the check must fail"
+copy="$out/mutant-bluepill-stack"
+rm -rf "$copy" && mkdir -p "$copy"
+cp -r "$bluepill/src" "$bluepill/Cargo.toml" "$bluepill/Cargo.lock" "$bluepill/build.rs" \
+  "$bluepill/memory.x" "$bluepill/.cargo" "$copy/"
+sed -i "s#path = \"\\.\\./\\.\\./#path = \"$root/#g; s#path = \"\\.\\./demo\"#path = \"$root/firmware/demo\"#" \
+  "$copy/Cargo.toml"
+sed -i 's/DEMO_MEASURED_EACH\[0\].with_margin(5)/DEMO_MEASURED_EACH[0].with_margin(20)/' "$copy/src/main.rs"
+grep -q 'with_margin(20)' "$copy/src/main.rs" || { echo "error: the mutation does not apply" >&2; exit 1; }
+if ! (cd "$copy" && CARGO_TARGET_DIR="$out/target-bluepill" cargo build --release -q) \
+  >"$out/mutant-bluepill-stack.log" 2>&1; then
+  echo "error: mutant bluepill-stack does not build (see $out/mutant-bluepill-stack.log)" >&2
+  fail=1
+elif "$py" "$here/f103.py" "$out/target-bluepill/thumbv7m-none-eabi/release/zrow-bluepill" \
+  "$out/mutant-bluepill-stack.stream" --frames-per-scene 1 --frames 2 --scenes interlocked,cube \
+  >>"$out/mutant-bluepill-stack.log" 2>&1; then
+  echo "error: mutant bluepill-stack passed the check" >&2
+  fail=1
+else
+  echo "caught: $(grep -m1 'stack ran into' "$out/mutant-bluepill-stack.log" || tail -1 "$out/mutant-bluepill-stack.log")"
+fi
 exit "$fail"

@@ -44,6 +44,35 @@ static RENDERER: ConstStaticCell<Renderer> = ConstStaticCell::new(Renderer::new(
 static ROW_A: ConstStaticCell<[u8; ROW_BYTES]> = ConstStaticCell::new([0; ROW_BYTES]);
 static ROW_B: ConstStaticCell<[u8; ROW_BYTES]> = ConstStaticCell::new([0; ROW_BYTES]);
 
+/// Initialises the panel with mipidsi, through borrows so the SPI and pins come back
+/// afterwards. Out of line, so the driver's state leaves the stack before the demo runs.
+#[inline(never)]
+fn init_panel<SPI, CS, DC, RST>(
+    spi: &mut SPI,
+    cs: &mut CS,
+    dc: &mut DC,
+    rst: RST,
+    delay: &mut impl embedded_hal::delay::DelayNs,
+) where
+    SPI: embedded_hal::spi::SpiBus,
+    CS: embedded_hal::digital::OutputPin<Error = core::convert::Infallible>,
+    DC: embedded_hal::digital::OutputPin,
+    RST: embedded_hal::digital::OutputPin,
+{
+    let Ok(device) = ExclusiveDevice::new_no_delay(spi, cs);
+    let mut buffer = [0u8; 64];
+    let interface = SpiInterface::new(device, dc, &mut buffer);
+    if Builder::new(ST7789, interface)
+        .display_size(240, 240)
+        .invert_colors(ColorInversion::Inverted)
+        .reset_pin(rst)
+        .init(delay)
+        .is_err()
+    {
+        defmt::error!("ST7789 init failed");
+    }
+}
+
 #[entry]
 fn main() -> ! {
     let (Some(dp), Some(mut cp)) = (pac::Peripherals::take(), cortex_m::Peripherals::take()) else {
@@ -73,21 +102,7 @@ fn main() -> ! {
         &mut rcc,
     );
 
-    // Panel initialisation with mipidsi, through borrows so the SPI comes back afterwards.
-    {
-        let Ok(device) = ExclusiveDevice::new_no_delay(&mut spi, &mut cs);
-        let mut buffer = [0u8; 64];
-        let interface = SpiInterface::new(device, &mut dc, &mut buffer);
-        if Builder::new(ST7789, interface)
-            .display_size(240, 240)
-            .invert_colors(ColorInversion::Inverted)
-            .reset_pin(rst)
-            .init(&mut delay)
-            .is_err()
-        {
-            defmt::error!("ST7789 init failed");
-        }
-    }
+    init_panel(&mut spi, &mut cs, &mut dc, rst, &mut delay);
     // CS stays low from here on: the row sink owns the bus.
     cs.set_low();
     backlight.set_high();
@@ -97,5 +112,5 @@ fn main() -> ! {
     let Ok(mut rows) = Rows::new(link, dc, WINDOW, ROW_A.take(), ROW_B.take()) else {
         panic!("the window does not fit the row buffers");
     };
-    zrow_demo::run(RENDERER.take(), &mut rows, &zrow_scenes::DEMOS, SYSCLK_HZ)
+    zrow_demo::run(RENDERER.take(), &mut rows, &zrow_demo::ALL, SYSCLK_HZ)
 }

@@ -66,16 +66,37 @@ pub const FOLEY: [&str; 2] = ["foley100", "foley2500"];
 /// The demo scenes, in the order the simulator and the board show them.
 pub const DEMOS: [&str; 3] = ["interlocked", "cube", "mesh1k"];
 
-/// What the demo scenes need at most (Q16.16, 240×240, [`with_demo`]), measured over 2,048
-/// angles of a turn and the board's first 3,000 frames (0.03 rad each): mesh1k's 463
-/// polygons, 500 vertices and 67 active polygons (`tests/demos.rs` measures it again).
-pub const DEMO_MEASURED: zrow::Requirements = zrow::Requirements {
-    polygons: 463,
-    edges: 1316,
-    vertices: 500,
-    active_polygons: 67,
-    width: SIZE,
-};
+/// What each demo scene needs at most (Q16.16, 240×240, [`with_demo`]), measured over 2,048
+/// angles of a turn and the board's first 3,000 frames (0.03 rad each), in the order of
+/// [`DEMOS`] (`tests/demos.rs` measures them again). A board that shows some of the demos
+/// sizes its renderer to those.
+pub const DEMO_MEASURED_EACH: [zrow::Requirements; 3] = [
+    zrow::Requirements {
+        polygons: 253,
+        edges: 744,
+        vertices: 264,
+        active_polygons: 57,
+        width: SIZE,
+    },
+    zrow::Requirements {
+        polygons: 3,
+        edges: 12,
+        vertices: 8,
+        active_polygons: 3,
+        width: SIZE,
+    },
+    zrow::Requirements {
+        polygons: 463,
+        edges: 1316,
+        vertices: 500,
+        active_polygons: 67,
+        width: SIZE,
+    },
+];
+
+/// What the demo scenes need at most, all of them: mesh1k's 463 polygons, 500 vertices and 67
+/// active polygons, the most of each.
+pub const DEMO_MEASURED: zrow::Requirements = DEMO_MEASURED_EACH[2];
 
 /// The board's renderer capacities: [`DEMO_MEASURED`] plus 5 % for the angles between the
 /// measured ones (`zrow::scanline_for!(Q16_16, DEMO_REQUIREMENTS)`).
@@ -274,17 +295,43 @@ pub fn with_demo<N: Format, R>(
     angle: f32,
     f: impl FnOnce(&dyn Scene<N>, &Config, usize) -> R,
 ) -> Option<R> {
-    let math = MathLib::Libm;
     match name {
-        "interlocked" => interlocked(angle, math, f),
-        "cube" => model(Mesh::new(N::cube(), &meshes::CUBE_FACES), angle, math, f),
-        "mesh1k" => model(
-            Mesh::triangles(N::torus(), &meshes::TORUS_TRIANGLES, &meshes::TORUS_COLORS),
-            angle,
-            math,
-            f,
-        ),
+        "interlocked" => demo::interlocked(angle, f),
+        "cube" => demo::cube(angle, f),
+        "mesh1k" => demo::mesh1k(angle, f),
         _ => None,
+    }
+}
+
+/// The demo scenes one function each, as [`with_demo`] draws them: a program that shows some
+/// of them (a board with little flash) links only those functions' meshes.
+pub mod demo {
+    use super::*;
+
+    /// The interlocked rings and cube (`"interlocked"`).
+    pub fn interlocked<N: Format, R>(
+        angle: f32,
+        f: impl FnOnce(&dyn Scene<N>, &Config, usize) -> R,
+    ) -> Option<R> {
+        super::interlocked(angle, MathLib::Libm, f)
+    }
+
+    /// The cube (`"cube"`).
+    pub fn cube<N: Format, R>(
+        angle: f32,
+        f: impl FnOnce(&dyn Scene<N>, &Config, usize) -> R,
+    ) -> Option<R> {
+        let mesh = Mesh::new(N::cube(), &meshes::CUBE_FACES);
+        model(mesh, angle, MathLib::Libm, f)
+    }
+
+    /// The 1,000-triangle torus (`"mesh1k"`).
+    pub fn mesh1k<N: Format, R>(
+        angle: f32,
+        f: impl FnOnce(&dyn Scene<N>, &Config, usize) -> R,
+    ) -> Option<R> {
+        let mesh = Mesh::triangles(N::torus(), &meshes::TORUS_TRIANGLES, &meshes::TORUS_COLORS);
+        model(mesh, angle, MathLib::Libm, f)
     }
 }
 
@@ -324,24 +371,19 @@ fn interlocked<N: Format, R>(
     let warm = Mesh::triangles(N::ring(), &meshes::RING_TRIANGLES, &meshes::RING_WARM_COLOR);
     let cool = Mesh::triangles(N::ring(), &meshes::RING_TRIANGLES, &meshes::RING_COOL_COLOR);
     let cube = Mesh::new(N::cube(), &meshes::CUBE_PLAIN_FACES);
-    // Ring A lies flat, ring B stands up through A's hole; the cube sits where they cross.
-    let turn =
-        |yaw: f32, pitch: f32, t: [f32; 3]| Affine::rotate_yx_translate_with(math, yaw, pitch, t);
-    let s = INTERLOCKED_SCALE;
-    let grow = Affine::from_f32([[s, 0.0, 0.0, 0.0], [0.0, s, 0.0, 0.0], [0.0, 0.0, s, 0.0]])?;
-    let spin = grow.then_after(&turn(angle, 0.3, [0.0; 3])?);
+    let [a, b, c] = interlocked_turns::<N>(angle, math)?;
     let objects = [
         Object {
             mesh: &warm,
-            transform: spin.then_after(&turn(0.0, 0.0, [-0.35, 0.0, 0.0])?),
+            transform: a,
         },
         Object {
             mesh: &cool,
-            transform: spin.then_after(&turn(0.0, core::f32::consts::FRAC_PI_2, [0.35, 0.0, 0.0])?),
+            transform: b,
         },
         Object {
             mesh: &cube,
-            transform: spin.then_after(&turn(2.0 * angle, 0.6, [0.0, 0.0, 0.0])?),
+            transform: c,
         },
     ];
     let scene = ModelScene {
@@ -351,6 +393,23 @@ fn interlocked<N: Format, R>(
     };
     let faces = warm.faces.len() + cool.faces.len() + cube.faces.len();
     Some(f(&scene, &Config::model(SIZE, SIZE), faces))
+}
+
+/// The interlocked objects' placements at `angle`: ring A lies flat, ring B stands up through
+/// A's hole, the cube sits where they cross. Out of line, so the temporaries of composing them
+/// leave the stack before the frame is drawn (a board with 20 KB of RAM counts them).
+#[inline(never)]
+fn interlocked_turns<N: Format>(angle: f32, math: MathLib) -> Option<[Affine<N>; 3]> {
+    let turn =
+        |yaw: f32, pitch: f32, t: [f32; 3]| Affine::rotate_yx_translate_with(math, yaw, pitch, t);
+    let s = INTERLOCKED_SCALE;
+    let grow = Affine::from_f32([[s, 0.0, 0.0, 0.0], [0.0, s, 0.0, 0.0], [0.0, 0.0, s, 0.0]])?;
+    let spin = grow.then_after(&turn(angle, 0.3, [0.0; 3])?);
+    Some([
+        spin.then_after(&turn(0.0, 0.0, [-0.35, 0.0, 0.0])?),
+        spin.then_after(&turn(0.0, core::f32::consts::FRAC_PI_2, [0.35, 0.0, 0.0])?),
+        spin.then_after(&turn(2.0 * angle, 0.6, [0.0, 0.0, 0.0])?),
+    ])
 }
 
 /// How much the interlocked demo is scaled up (its rings are 1.9 units across): to fill most

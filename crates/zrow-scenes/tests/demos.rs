@@ -6,7 +6,10 @@ use zrow::{requirements, Requirements, Scanline, Q16_16};
 #[test]
 fn demos_fit_the_board_renderer_over_a_full_turn() {
     let mut all = Requirements::default();
-    for name in zrow_scenes::DEMOS {
+    for (name, each) in zrow_scenes::DEMOS
+        .iter()
+        .zip(zrow_scenes::DEMO_MEASURED_EACH)
+    {
         let mut worst = Requirements::default();
         // A turn, and the board's own angles (0.03 rad a frame) over its first frames.
         let angles = (0..256)
@@ -20,6 +23,14 @@ fn demos_fit_the_board_renderer_over_a_full_turn() {
             worst = worst.max(req);
         }
         assert!(worst.polygons > 0, "{name} draws nothing");
+        // Within what was measured over 2,048 angles, and the meshes' own vertices exactly.
+        assert!(
+            worst.polygons <= each.polygons
+                && worst.edges <= each.edges
+                && worst.active_polygons <= each.active_polygons
+                && worst.vertices == each.vertices,
+            "{name}: {worst:?} vs {each:?}"
+        );
         all = all.max(worst);
     }
     // Within what was measured over 2,048 angles (and the mesh's own 500 vertices exactly).

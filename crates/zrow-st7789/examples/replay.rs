@@ -1,19 +1,21 @@
-//! Replays what a firmware clocked out of SPI (a stream file of `emu/board/f411.py`) through the
-//! panel model and checks every frame against the host's render of the same demo frame, bit for
-//! bit; then prints, per demo scene, the frames checked, the bytes on the wire and the cycles
-//! per frame with the estimated frames per second at 100 MHz.
+//! Replays what a firmware clocked out of SPI (a stream file of `emu/board/f411.py` or
+//! `f103.py`) through the panel model and checks every frame against the host's render of the
+//! same demo frame, bit for bit; then prints, per demo scene, the frames checked, the bytes on
+//! the wire and the cycles per frame with the estimated frames per second at the board's clock.
 //!
 //! ```sh
 //! cargo run --release -p zrow-st7789 --example replay -- STREAM
 //! ```
 //!
-//! The stream's lines: `fps N` (frames per demo scene), `t NS` (the time the next bytes start),
+//! The stream's lines: `fps N` (frames per demo scene), `scenes NAME...` (the demo scenes the
+//! firmware shows, in order; default all of `zrow_scenes::DEMOS`), `hclk HZ` (its clock;
+//! default 100 MHz), `t NS` (the time the next bytes start),
 //! `c HEX` (bytes sent with DC low), `d HEX` (DC high), `r LEVEL` (the reset pin), `b LEVEL`
 //! (the backlight),
 //! `f FRAME CYCLES WAITED` (frame `FRAME` is on the panel, `CYCLES` after the previous one, of
 //! which the firmware spent `WAITED` waiting for the SPI or its DMA: the sending rendering did
-//! not hide). Frame `k` is demo scene `DEMOS[(k / N) % 3]` at angle `0.03·k`, as the firmware
-//! draws it.
+//! not hide). Frame `k` is scene `scenes[(k / N) % scenes.len()]` at angle `0.03·k`, as the
+//! firmware draws it.
 //!
 //! Exits non-zero on a frame that differs, a frame shown with the backlight off, a protocol
 //! error the model saw, a panel left asleep, off or not inverted, or a malformed stream.
@@ -23,9 +25,6 @@ use std::process::ExitCode;
 use zrow::{FrameBuffer, Scanline, Q16_16};
 use zrow_st7789::model::St7789Model;
 use zrow_st7789::Window;
-
-/// Instructions are taken as cycles at the firmware's clock (an estimate).
-const HCLK: f64 = 100e6;
 
 #[derive(Default)]
 struct Scene {
@@ -51,6 +50,8 @@ fn main() -> ExitCode {
     let mut model = St7789Model::new();
     let mut renderer = Box::new(Scanline::<Q16_16, 240, 4096, 1024, 512>::new());
     let mut per_scene = 1u32;
+    // Instructions are taken as cycles at the firmware's clock (an estimate).
+    let mut hclk = 100e6;
     let mut scenes: Vec<(&str, Scene)> = zrow_scenes::DEMOS
         .iter()
         .map(|&n| (n, Scene::default()))
@@ -69,6 +70,22 @@ fn main() -> ExitCode {
                 Ok(v) if v > 0 => per_scene = v,
                 _ => return bad("frames per scene"),
             },
+            "hclk" => match rest.parse::<f64>() {
+                Ok(v) if v > 0.0 => hclk = v,
+                _ => return bad("clock"),
+            },
+            "scenes" => {
+                let named: Option<Vec<&str>> = rest
+                    .split(' ')
+                    .map(|n| zrow_scenes::DEMOS.iter().copied().find(|&d| d == n))
+                    .collect();
+                match named {
+                    Some(n) if !n.is_empty() => {
+                        scenes = n.into_iter().map(|n| (n, Scene::default())).collect()
+                    }
+                    _ => return bad("demo scene names"),
+                }
+            }
             "t" => match rest.parse::<u64>() {
                 Ok(ns) => model.advance_ns(ns.saturating_sub(model.now_ns())),
                 Err(_) => return bad("time"),
@@ -86,7 +103,7 @@ fn main() -> ExitCode {
                 else {
                     return bad("frame marker");
                 };
-                let name = zrow_scenes::DEMOS[(frame as u32 / per_scene) as usize % 3];
+                let name = scenes[(frame as u32 / per_scene) as usize % scenes.len()].0;
                 let mut want = vec![Rgb565::BLACK; 240 * 240];
                 let drawn =
                     zrow_scenes::with_demo::<Q16_16, _>(name, frame as f32 * 0.03, |s, c, _| {
@@ -139,7 +156,8 @@ fn main() -> ExitCode {
     }
     println!(
         "| demo scene | frames | bytes on the wire a frame | M cycles a frame | of which waiting \
-         for SPI | estimated fps at 100 MHz |"
+         for SPI | estimated fps at {:.0} MHz |",
+        hclk / 1e6
     );
     println!("|---|---|---|---|---|---|");
     for (name, s) in scenes.iter().filter(|(_, s)| s.frames > 0) {
@@ -151,7 +169,7 @@ fn main() -> ExitCode {
             (s.bytes as f64 / f).round() as u64,
             cycles / 1e6,
             s.waited as f64 / f / 1e6,
-            HCLK / cycles
+            hclk / cycles
         );
     }
     println!("replay: {checked} frames checked against the host's render, {failures} failures");

@@ -8,7 +8,7 @@
 
 use cortex_m::peripheral::DWT;
 use embedded_hal::digital::OutputPin;
-use zrow::{Renderer, Q16_16};
+use zrow::{Config, Renderer, Scene, Q16_16};
 use zrow_st7789::dma::{DmaLink, DmaRows};
 
 /// Bytes in one row (240 RGB565 pixels).
@@ -20,6 +20,38 @@ pub const WINDOW: zrow_st7789::Window = zrow_st7789::Window::new(240, 240);
 
 /// The DMA row sink of a demo board.
 pub type Rows<L, DC> = DmaRows<L, DC, ROW_BYTES, ROWS>;
+
+/// What draws one frame of a scene: calls its argument with the scene turned by the angle
+/// (radians) and its configuration; `None` if the scene cannot be built.
+pub type Draw = fn(f32, &mut dyn FnMut(&dyn Scene<Q16_16>, &Config)) -> Option<()>;
+
+/// A demo scene a board shows: its name (for the log) and what draws it. A board lists only
+/// the scenes it shows, so only their meshes are linked.
+#[derive(Clone, Copy)]
+pub struct Show {
+    /// The scene's name in `zrow_scenes::DEMOS`.
+    pub name: &'static str,
+    /// One of `zrow_scenes::demo`'s functions.
+    pub draw: Draw,
+}
+
+/// The interlocked rings and cube.
+pub const INTERLOCKED: Show = Show {
+    name: "interlocked",
+    draw: |angle, f| zrow_scenes::demo::interlocked(angle, |s, c, _| f(s, c)),
+};
+/// The cube.
+pub const CUBE: Show = Show {
+    name: "cube",
+    draw: |angle, f| zrow_scenes::demo::cube(angle, |s, c, _| f(s, c)),
+};
+/// The 1,000-triangle torus.
+pub const MESH1K: Show = Show {
+    name: "mesh1k",
+    draw: |angle, f| zrow_scenes::demo::mesh1k(angle, |s, c, _| f(s, c)),
+};
+/// Every demo scene, in the simulator's order (`zrow_scenes::DEMOS`).
+pub const ALL: [Show; 3] = [INTERLOCKED, CUBE, MESH1K];
 
 /// Frames per demo scene. A static read at every frame, so a debugger, or the
 /// board-in-the-loop test (`emu/board`), can shorten the scenes without another build.
@@ -48,16 +80,11 @@ fn panic(info: &core::panic::PanicInfo) -> ! {
     cortex_m::asm::udf()
 }
 
-/// Shows `scenes` (names of `zrow_scenes::DEMOS`) in turn forever, each [`FRAMES_PER_SCENE`]
+/// Shows `scenes` in turn forever, each [`FRAMES_PER_SCENE`]
 /// frames, turning 0.03 rad a frame. `sysclk_hz` converts the cycle counts of the log (DWT's
 /// cycle counter, which the board enables) to frames per second. A frame the renderer refuses
 /// (a capacity error) is logged and not sent: the panel keeps its last frame.
-pub fn run<R, L, DC>(
-    renderer: &mut R,
-    rows: &mut Rows<L, DC>,
-    scenes: &[&'static str],
-    sysclk_hz: u32,
-) -> !
+pub fn run<R, L, DC>(renderer: &mut R, rows: &mut Rows<L, DC>, scenes: &[Show], sysclk_hz: u32) -> !
 where
     R: Renderer<Q16_16>,
     L: DmaLink<ROW_BYTES>,
@@ -68,20 +95,21 @@ where
     loop {
         // SAFETY: a plain read of an immutable static (volatile: a debugger may change it).
         let per_scene = unsafe { core::ptr::read_volatile(&FRAMES_PER_SCENE) }.max(1);
-        let Some(&name) = scenes.get((frame / per_scene) as usize % scenes.len().max(1)) else {
+        let Some(show) = scenes.get((frame / per_scene) as usize % scenes.len().max(1)) else {
             defmt::error!("no scenes to show");
             loop {
                 cortex_m::asm::wfi();
             }
         };
-        let angle = frame as f32 * 0.03;
+        let (name, angle) = (show.name, frame as f32 * 0.03);
         rows.wait_cycles = 0;
         let t0 = DWT::cycle_count();
-        let result = zrow_scenes::with_demo::<Q16_16, _>(name, angle, |scene, cfg, _| {
-            renderer.render(scene, cfg, rows)
+        let mut result = None;
+        let built = (show.draw)(angle, &mut |scene, cfg| {
+            result = Some(renderer.render(scene, cfg, rows));
         });
         let cycles = DWT::cycle_count().wrapping_sub(t0);
-        match result {
+        match result.filter(|_| built.is_some()) {
             Some(Ok(stats)) if frame.is_multiple_of(32) => defmt::info!(
                 "{=str}: {} polygons, render {} cyc, SPI wait {} cyc, {} of 240 rows sent, {} fps",
                 name,
