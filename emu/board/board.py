@@ -46,6 +46,14 @@ CORE_BLOCKS = [(0xE000_0000, "ITM"), (0xE000_1000, "DWT"), (0xE000_2000, "FPB"),
 SPI_NAMES = {SPI1: "SPI1_CR1", SPI1 + 4: "SPI1_CR2", SPI1 + 8: "SPI1_SR", SPI1 + 12: "SPI1_DR"}
 
 
+def namer(names):
+    """`name(base, {offset: "REG"})` records a block's register names into `names`."""
+    def name(base, regs):
+        for off, n in regs.items():
+            names[base + off] = n
+    return name
+
+
 class Board:
     """A chip's model: subclasses set the class attributes and model their registers."""
 

@@ -34,13 +34,7 @@ RCC = 0x4002_1000
 FLASH_ACR = 0x4002_2000
 
 NAMES = {}
-
-
-def name(base, regs):
-    for off, n in regs.items():
-        NAMES[base + off] = n
-
-
+name = board.namer(NAMES)
 name(RCC, {0x00: "RCC_CR", 0x04: "RCC_CFGR", 0x08: "RCC_CIR", 0x0C: "RCC_APB2RSTR",
            0x10: "RCC_APB1RSTR", 0x14: "RCC_AHBENR", 0x18: "RCC_APB2ENR", 0x1C: "RCC_APB1ENR",
            0x20: "RCC_BDCR", 0x24: "RCC_CSR"})

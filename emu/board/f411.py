@@ -33,13 +33,7 @@ DMA2 = 0x4002_6400
 S3 = DMA2 + 0x10 + 0x18 * 3
 
 NAMES = {}
-
-
-def name(base, regs):
-    for off, n in regs.items():
-        NAMES[base + off] = n
-
-
+name = board.namer(NAMES)
 name(RCC, {0x00: "RCC_CR", 0x04: "RCC_PLLCFGR", 0x08: "RCC_CFGR", 0x0C: "RCC_CIR",
            0x10: "RCC_AHB1RSTR", 0x14: "RCC_AHB2RSTR", 0x20: "RCC_APB1RSTR",
            0x24: "RCC_APB2RSTR", 0x30: "RCC_AHB1ENR", 0x34: "RCC_AHB2ENR", 0x40: "RCC_APB1ENR",

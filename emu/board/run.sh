@@ -140,7 +140,7 @@ mutant dc-polarity zrow-st7789/src/dma.rs \
   'dc.set_low()?;=>dc.set_high()?;'
 mutant half-row zrow-st7789/src/dma.rs \
   'let (_, signature) = encode_row_signed(row.color, buf);=>let (_, signature) = encode_row_signed(row.color, buf); crate::encode_row(&[zrow::pixelcolor::Rgb565::new(0, 0, 0); 120], &mut buf[240..]);'
-mutant no-inversion src/main.rs \
+mutant no-inversion demo/src/lib.rs \
   '.invert_colors(ColorInversion::Inverted)=>'
 
 # The Blue Pill's stack check must catch a stack that reaches the statics: a copy whose

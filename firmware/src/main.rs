@@ -19,8 +19,6 @@ mod link;
 
 use cortex_m_rt::entry;
 use defmt_rtt as _;
-use embedded_hal_bus::spi::ExclusiveDevice;
-use mipidsi::{interface::SpiInterface, models::ST7789, options::ColorInversion, Builder};
 use static_cell::ConstStaticCell;
 use stm32f4xx_hal::{
     dma::StreamsTuple,
@@ -43,35 +41,6 @@ type Renderer = zrow::scanline_for!(Q16_16, zrow_scenes::DEMO_REQUIREMENTS);
 static RENDERER: ConstStaticCell<Renderer> = ConstStaticCell::new(Renderer::new());
 static ROW_A: ConstStaticCell<[u8; ROW_BYTES]> = ConstStaticCell::new([0; ROW_BYTES]);
 static ROW_B: ConstStaticCell<[u8; ROW_BYTES]> = ConstStaticCell::new([0; ROW_BYTES]);
-
-/// Initialises the panel with mipidsi, through borrows so the SPI and pins come back
-/// afterwards. Out of line, so the driver's state leaves the stack before the demo runs.
-#[inline(never)]
-fn init_panel<SPI, CS, DC, RST>(
-    spi: &mut SPI,
-    cs: &mut CS,
-    dc: &mut DC,
-    rst: RST,
-    delay: &mut impl embedded_hal::delay::DelayNs,
-) where
-    SPI: embedded_hal::spi::SpiBus,
-    CS: embedded_hal::digital::OutputPin<Error = core::convert::Infallible>,
-    DC: embedded_hal::digital::OutputPin,
-    RST: embedded_hal::digital::OutputPin,
-{
-    let Ok(device) = ExclusiveDevice::new_no_delay(spi, cs);
-    let mut buffer = [0u8; 64];
-    let interface = SpiInterface::new(device, dc, &mut buffer);
-    if Builder::new(ST7789, interface)
-        .display_size(240, 240)
-        .invert_colors(ColorInversion::Inverted)
-        .reset_pin(rst)
-        .init(delay)
-        .is_err()
-    {
-        defmt::error!("ST7789 init failed");
-    }
-}
 
 #[entry]
 fn main() -> ! {
@@ -102,7 +71,7 @@ fn main() -> ! {
         &mut rcc,
     );
 
-    init_panel(&mut spi, &mut cs, &mut dc, rst, &mut delay);
+    zrow_demo::init_panel(&mut spi, &mut cs, &mut dc, rst, &mut delay);
     // CS stays low from here on: the row sink owns the bus.
     cs.set_low();
     backlight.set_high();

@@ -8,6 +8,8 @@
 
 use cortex_m::peripheral::DWT;
 use embedded_hal::digital::OutputPin;
+use embedded_hal_bus::spi::ExclusiveDevice;
+use mipidsi::{interface::SpiInterface, models::ST7789, options::ColorInversion, Builder};
 use zrow::{Config, Renderer, Scene, Q16_16};
 use zrow_st7789::dma::{DmaLink, DmaRows};
 
@@ -78,6 +80,35 @@ fn panic(info: &core::panic::PanicInfo) -> ! {
         None => defmt::error!("panic"),
     }
     cortex_m::asm::udf()
+}
+
+/// Initialises a 240×240 ST7789 module (colours inverted, as these modules want) with mipidsi, through borrows so the SPI and pins come back
+/// afterwards. Out of line, so the driver's state leaves the stack before the demo runs.
+#[inline(never)]
+pub fn init_panel<SPI, CS, DC, RST>(
+    spi: &mut SPI,
+    cs: &mut CS,
+    dc: &mut DC,
+    rst: RST,
+    delay: &mut impl embedded_hal::delay::DelayNs,
+) where
+    SPI: embedded_hal::spi::SpiBus,
+    CS: embedded_hal::digital::OutputPin<Error = core::convert::Infallible>,
+    DC: embedded_hal::digital::OutputPin,
+    RST: embedded_hal::digital::OutputPin,
+{
+    let Ok(device) = ExclusiveDevice::new_no_delay(spi, cs);
+    let mut buffer = [0u8; 64];
+    let interface = SpiInterface::new(device, dc, &mut buffer);
+    if Builder::new(ST7789, interface)
+        .display_size(240, 240)
+        .invert_colors(ColorInversion::Inverted)
+        .reset_pin(rst)
+        .init(delay)
+        .is_err()
+    {
+        defmt::error!("ST7789 init failed");
+    }
 }
 
 /// Shows `scenes` in turn forever, each [`FRAMES_PER_SCENE`]
