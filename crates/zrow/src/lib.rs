@@ -139,6 +139,10 @@ pub use zbuffer::ZBuffer;
 /// type Renderer = scanline_for!(Q16_16, REQ);
 /// assert_eq!(Renderer::RAM_BYTES, core::mem::size_of::<zrow::Scanline<Q16_16, 240, 512, 480, 72>>());
 /// ```
+///
+/// `scanline_for!(N, REQ, uncued)` is the same without the affine depth cue's per-edge state
+/// ([`scanline::Uncued`]: 20 bytes less per active slot in a 32-bit format), for a renderer
+/// that draws flat-shaded or with the perspective-correct cue only.
 #[macro_export]
 macro_rules! scanline_for {
     ($n:ty, $req:expr) => {
@@ -148,6 +152,17 @@ macro_rules! scanline_for {
             { $req.vertices as usize },
             { $req.polygons as usize },
             { $req.active_polygons as usize },
+        >
+    };
+    ($n:ty, $req:expr, uncued) => {
+        $crate::Scanline<
+            $n,
+            { $req.width as usize },
+            { $req.vertices as usize },
+            { $req.polygons as usize },
+            { $req.active_polygons as usize },
+            u16,
+            $crate::scanline::Uncued,
         >
     };
 }

@@ -71,6 +71,8 @@ mod sealed {
     pub trait Sealed {}
     impl Sealed for u16 {}
     impl Sealed for u32 {}
+    impl<N, const K: usize> Sealed for [super::EdgeCue<N>; K] {}
+    impl Sealed for super::Uncued {}
 }
 
 impl Slot for u16 {
@@ -201,10 +203,71 @@ struct Active<N> {
     /// Scene order: the index in the polygon table.
     poly: u16,
     color: Rgb565,
-    /// Affine depth cue: factors and steps per row on the left and right edges, and the last
-    /// rows of the edges they were set up for.
-    cue: [N; 4],
-    cue_last: [i16; 2],
+}
+
+/// The affine depth cue's state for one active polygon: the factors and their steps per row on
+/// its left and right edges, and the last rows of the edges they were set up for (20 bytes in a
+/// 32-bit format).
+#[derive(Clone, Copy, Debug)]
+pub struct EdgeCue<N> {
+    f: [N; 4],
+    last: [i16; 2],
+}
+
+impl<N: Scalar> EdgeCue<N> {
+    const ZERO: Self = EdgeCue {
+        f: [N::ZERO; 4],
+        last: [0; 2],
+    };
+}
+
+/// Where a scan-line renderer keeps the affine depth cue's per-edge state (its `C` parameter):
+/// `[EdgeCue<N>; A]`, one per active slot (the default), or [`Uncued`], none — 20 bytes less
+/// per active slot in a 32-bit format, for a renderer that never draws with the affine depth
+/// cue (a frame that asks for it is then [`Error::Unsupported`]; flat shading and the
+/// perspective-correct cue need no per-edge state).
+pub trait CueStore<N>: sealed::Sealed {
+    /// The store with nothing set (all zero: a `static` renderer stays in `.bss`).
+    const EMPTY: Self;
+    /// Whether it keeps any state.
+    const KEEPS: bool;
+    /// Slot `k`'s state.
+    #[doc(hidden)]
+    fn at(&self, k: usize) -> Option<&EdgeCue<N>>;
+    /// Slot `k`'s state, to set.
+    #[doc(hidden)]
+    fn at_mut(&mut self, k: usize) -> Option<&mut EdgeCue<N>>;
+}
+
+impl<N: Scalar, const K: usize> CueStore<N> for [EdgeCue<N>; K] {
+    const EMPTY: Self = [EdgeCue::ZERO; K];
+    const KEEPS: bool = true;
+    #[inline]
+    fn at(&self, k: usize) -> Option<&EdgeCue<N>> {
+        self.get(k)
+    }
+    #[inline]
+    fn at_mut(&mut self, k: usize) -> Option<&mut EdgeCue<N>> {
+        self.get_mut(k)
+    }
+}
+
+/// A scan-line renderer without the affine depth cue's per-edge state ([`CueStore`]):
+/// `Scanline<N, W, V, P, A, u16, Uncued>`, or `scanline_for!(N, REQ, uncued)`.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Uncued;
+
+impl<N> CueStore<N> for Uncued {
+    const EMPTY: Self = Uncued;
+    const KEEPS: bool = false;
+    #[inline]
+    fn at(&self, _: usize) -> Option<&EdgeCue<N>> {
+        None
+    }
+    #[inline]
+    fn at_mut(&mut self, _: usize) -> Option<&mut EdgeCue<N>> {
+        None
+    }
 }
 
 /// The scan-line renderer.
@@ -214,7 +277,9 @@ struct Active<N> {
 /// - `V`: vertex buffer (every vertex of the scene's meshes once, plus what clipping adds: see
 ///   [`Requirements::vertices`]);
 /// - `P`: polygon table; `A`: active list (polygons crossing one row);
-/// - `S`: the slot number type ([`Slot`]: `u16` up to 65,536 vertex slots, else `u32`).
+/// - `S`: the slot number type ([`Slot`]: `u16` up to 65,536 vertex slots, else `u32`);
+/// - `C`: where the affine depth cue's per-edge state is kept ([`CueStore`]; [`Uncued`] for
+///   a renderer that never draws with it: 20 bytes less per active slot).
 ///
 /// Choose the capacities with [`crate::requirements()`]. All memory is in the struct:
 /// [`Scanline::RAM_BYTES`] is the whole of it.
@@ -225,6 +290,7 @@ pub struct Scanline<
     const P: usize,
     const A: usize,
     S: Slot = u16,
+    C = [EdgeCue<N>; A],
 > {
     /// The frame's vertex buffer: geometry writes every vertex here once, projected and
     /// snapped; polygons refer to it by slot.
@@ -234,6 +300,8 @@ pub struct Scanline<
     order: Vec<u16, P>,
     /// The active list's entries, by slot (slots `used..` never used this frame).
     active: [Active<N>; A],
+    /// Their affine depth cue, by slot (if the renderer keeps it).
+    cues: C,
     used: usize,
     /// Free slots of `active`.
     free: Vec<u16, A>,
@@ -286,16 +354,30 @@ const HIZ_BLOCK: usize = 16;
 /// Blocks of the hierarchical depth (64 bytes in a 32-bit format).
 const HIZ_BLOCKS: usize = 16;
 
-impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, S: Slot> Default
-    for Scanline<N, W, V, P, A, S>
+impl<
+        N: Scalar,
+        const W: usize,
+        const V: usize,
+        const P: usize,
+        const A: usize,
+        S: Slot,
+        C: CueStore<N>,
+    > Default for Scanline<N, W, V, P, A, S, C>
 {
     fn default() -> Self {
         Self::new()
     }
 }
 
-impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, S: Slot>
-    Scanline<N, W, V, P, A, S>
+impl<
+        N: Scalar,
+        const W: usize,
+        const V: usize,
+        const P: usize,
+        const A: usize,
+        S: Slot,
+        C: CueStore<N>,
+    > Scanline<N, W, V, P, A, S, C>
 {
     /// Bytes of RAM the renderer occupies (all its tables and row buffers).
     pub const RAM_BYTES: usize = core::mem::size_of::<Self>();
@@ -333,9 +415,8 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
                 last_row: 0,
                 poly: 0,
                 color: Rgb565::BLACK,
-                cue: [N::ZERO; 4],
-                cue_last: [0; 2],
             }; A],
+            cues: C::EMPTY,
             used: 0,
             free: Vec::new(),
             sorted: Vec::new(),
@@ -386,6 +467,13 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
     ) -> Result<FrameStats, Error> {
         cfg.validate(W)?;
         let cue = Cue::for_frame(scene, cfg)?;
+        if !C::KEEPS && cue.is_some_and(|c| c.interpolation == Interpolation::Affine) {
+            return Err(Error::Unsupported {
+                feature: "the affine depth cue: this scan-line renderer keeps no per-edge cue \
+                          state (its `C` parameter is `Uncued`; the perspective-correct cue \
+                          needs none)",
+            });
+        }
         (self.cue, self.cued) = (cue.unwrap_or(Cue::UNSET), cue.is_some());
         self.polygons.clear();
         self.used = 0;
@@ -690,10 +778,10 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             };
             planes.ensure(a);
         }
-        if let Some(c) = cue {
-            a.cue[0..2].copy_from_slice(&edge_cue(&c, &a.plane, &left, y));
-            a.cue[2..4].copy_from_slice(&edge_cue(&c, &a.plane, &right, y));
-            (a.cue_last[0], a.cue_last[1]) = (left.last, right.last);
+        if let (Some(c), Some(e)) = (cue, self.cues.at_mut(slot as usize)) {
+            e.f[0..2].copy_from_slice(&edge_cue(&c, &a.plane, &left, y));
+            e.f[2..4].copy_from_slice(&edge_cue(&c, &a.plane, &right, y));
+            e.last = [left.last, right.last];
         }
         self.cover += span_cover(a.xl(), a.xr(), cfg.width as i32);
         let _ = self.sorted.push(key(a.xl(), slot)); // at most A slots are occupied
@@ -776,7 +864,10 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
         self.cover = cover;
         if let Some(c) = self.affine_cue() {
             for &k in self.sorted.iter() {
-                step_cue(&c, &mut self.active[k as u16 as usize], y + 1);
+                let k = k as u16 as usize;
+                if let Some(e) = self.cues.at_mut(k) {
+                    step_cue(&c, &self.active[k], e, y + 1);
+                }
             }
         }
     }
@@ -1166,14 +1257,21 @@ impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, 
             planes.ensure(&mut self.active[slot]);
             fill_depth(&mut self.depth[a0..a1], &self.active[slot], x0);
         }
-        if self.row.cue {
-            cue_span(&mut self.intensity, &self.active[slot], x0, x1);
+        if let (true, Some(e)) = (self.row.cue, self.cues.at(slot)) {
+            cue_span(&mut self.intensity, &self.active[slot], e, x0, x1);
         }
     }
 }
 
-impl<N: Scalar, const W: usize, const V: usize, const P: usize, const A: usize, S: Slot> Renderer<N>
-    for Scanline<N, W, V, P, A, S>
+impl<
+        N: Scalar,
+        const W: usize,
+        const V: usize,
+        const P: usize,
+        const A: usize,
+        S: Slot,
+        C: CueStore<N>,
+    > Renderer<N> for Scanline<N, W, V, P, A, S, C>
 {
     const NAME: &'static str = "scanline";
     const RAM_BYTES: usize = Self::RAM_BYTES;
@@ -1288,16 +1386,16 @@ fn next_edge<N: Copy, S: Slot>(
 
 /// The affine cue one row down: each edge's factor stepped, or set up again where the edge
 /// changed.
-fn step_cue<N: Scalar>(c: &Cue<N>, a: &mut Active<N>, y: i32) {
+fn step_cue<N: Scalar>(c: &Cue<N>, a: &Active<N>, e: &mut EdgeCue<N>, y: i32) {
     for side in 0..2 {
         let w = if side == 0 { a.left } else { a.right };
         let k = 2 * side;
-        if a.cue_last[side] == w.last {
-            a.cue[k] = a.cue[k].add(a.cue[k + 1]);
+        if e.last[side] == w.last {
+            e.f[k] = e.f[k].add(e.f[k + 1]);
         } else {
             let v = edge_cue(c, &a.plane, &w, y);
-            a.cue[k..k + 2].copy_from_slice(&v);
-            a.cue_last[side] = w.last;
+            e.f[k..k + 2].copy_from_slice(&v);
+            e.last[side] = w.last;
         }
     }
 }
@@ -1423,11 +1521,11 @@ fn heapsort_by_key<K: Ord>(v: &mut [u16], key: impl Fn(u16) -> K) {
 
 /// Affine depth cue across `x0..x1` (already filled with the polygon's colour): the factor
 /// interpolated linearly between the edges' crossings of the row (one division per span).
-fn cue_span<N: Scalar>(intensity: &mut [Rgb565], a: &Active<N>, x0: i32, x1: i32) {
+fn cue_span<N: Scalar>(intensity: &mut [Rgb565], a: &Active<N>, e: &EdgeCue<N>, x0: i32, x1: i32) {
     let (cl, cr) = (a.left.dda.crossing::<N>(), a.right.dda.crossing::<N>());
-    let slope = a.cue[2].sub(a.cue[0]).div(cr.sub(cl)).unwrap_or(N::ZERO);
+    let slope = e.f[2].sub(e.f[0]).div(cr.sub(cl)).unwrap_or(N::ZERO);
     let at = |x: i32| N::from_f32(x as f32).unwrap_or(N::ZERO);
-    let mut f = a.cue[0].add(at(x0).sub(cl).mul(slope));
+    let mut f = e.f[0].add(at(x0).sub(cl).mul(slope));
     for c in &mut intensity[x0 as usize..x1 as usize] {
         *c = shade(*c, f);
         f = f.add(slope);
@@ -1641,8 +1739,14 @@ fn establish<N: Scalar>(active: &[Active<N>], open: &[u16], x: i32) -> (usize, u
 /// `Scanline::<N, W, V, P, A>::RAM_BYTES` with the capacities set to the requirements, but for
 /// the few bytes that align each table (tested).
 pub fn ram_bytes<N: Scalar>(req: &Requirements) -> usize {
+    ram_bytes_uncued::<N>(req) + req.active_polygons as usize * core::mem::size_of::<EdgeCue<N>>()
+}
+
+/// [`ram_bytes`] for a renderer without the affine depth cue's state
+/// (`Scanline<N, W, V, P, A, u16, Uncued>`, `scanline_for!(N, REQ, uncued)`).
+pub fn ram_bytes_uncued<N: Scalar>(req: &Requirements) -> usize {
     use core::mem::size_of;
-    size_of::<Scanline<N, 0, 0, 0, 0>>()
+    size_of::<Scanline<N, 0, 0, 0, 0, u16, Uncued>>()
         + req.vertices as usize * size_of::<RasterVertex<N>>()
         + req.polygons as usize * (size_of::<Polygon<u16>>() + size_of::<u16>())
         + req.active_polygons as usize

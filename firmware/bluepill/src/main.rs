@@ -7,7 +7,7 @@
 //! fit here: a 240×240 RGB565 frame is 112.5 KB.
 //!
 //! It shows the demo scenes that fit its RAM: the interlocked rings and the cube (the
-//! 1,000-triangle torus needs a renderer of 24 KB; README, "The Blue Pill").
+//! 1,000-triangle torus needs a renderer of 21.5 KB; README, "The Blue Pill").
 //!
 //! Wiring (README): SCK PA5, MOSI PA7, CS PA4, DC PA3, RST PA2, backlight PA1 — the F411's.
 #![no_std]
@@ -34,7 +34,11 @@ const SCENES: [zrow_demo::Show; 2] = [zrow_demo::INTERLOCKED, zrow_demo::CUBE];
 /// The renderer, sized to those scenes: what the interlocked scene needs at most over a turn
 /// (it needs more of everything than the cube), plus 5 % (`zrow_scenes::DEMO_MEASURED_EACH`,
 /// checked by `crates/zrow-scenes/tests/demos.rs`).
-type Renderer = zrow::scanline_for!(Q16_16, zrow_scenes::DEMO_MEASURED_EACH[0].with_margin(5));
+type Renderer = zrow::scanline_for!(
+    Q16_16,
+    zrow_scenes::DEMO_MEASURED_EACH[0].with_margin(5),
+    uncued
+);
 
 static RENDERER: ConstStaticCell<Renderer> = ConstStaticCell::new(Renderer::new());
 static ROW_A: ConstStaticCell<[u8; ROW_BYTES]> = ConstStaticCell::new([0; ROW_BYTES]);
