@@ -6,7 +6,8 @@
 # target/board/shipped.txt, which `bash emu/board/run.sh` writes).
 #
 # Checked: both firmwares' flash and static RAM, the bytes per frame on the wire and the board
-# in the loop's frame rates and stack peaks ("On the board"), the converted torus's scan-line RAM ("Bring your own model"), the emulated cube counts of cull-only and the
+# in the loop's frame rates and stack peaks ("On the board"), the converted torus's scan-line RAM
+# and the converted icosphere's flash ("Bring your own model"), the emulated cube counts of cull-only and the
 # scan-line method ("Methods"), and the scan-line RAM column of the methods table against
 # docs/methods/foley.md (which its own command writes).
 set -euo pipefail
@@ -88,6 +89,15 @@ trap 'rm -rf "$tmp"' EXIT
 torus="$(cargo run --release -q -p zrow-sim -- convert --model assets/models/torus.off \
   --out "$tmp/torus.rs" --size 240x240 --distance 3 2>&1 | sed -nE 's/.*RAM: scan-line ([0-9]+) bytes.*/\1/p')"
 expect "converted torus RAM" "torus at 240×240: $(thousands "$torus") bytes"
+
+# The converted icosphere's flash as a triangle list, and what its faces would take as a list
+# of zrow::Face (12 bytes each instead of the 2 of its one colour).
+ico="$(cargo run --release -q -p zrow-sim -- convert --model assets/models/icosphere.stl \
+  --out "$tmp/icosphere.rs" --size 240x240 --distance 3 2>&1 |
+  sed -nE 's/.*flash \(32-bit target\): ([0-9]+) bytes = .* faces ([0-9]+) .*/\1 \2/p')"
+read -r ico_flash ico_faces <<<"$ico"
+ico_listed=$((ico_flash - ico_faces + 12 * $(grep -c '^    \[' "$tmp/icosphere.rs")))
+expect "converted icosphere flash" "the icosphere: $(thousands "$ico_flash") bytes of flash where its faces would take $(thousands "$ico_listed")"
 
 # The emulated cube: cull-only against the scan-line method (Q16.16, M instructions).
 bench=emu/target/bench-m4.txt

@@ -75,11 +75,12 @@ fn index_type_is_u8_up_to_256_vertices_then_u16() {
     };
     let c = convert_model(&off(&strip(256, 0)), &opts).unwrap();
     assert_eq!((c.vertices.len(), c.index), (256, IndexType::U8));
-    assert!(c.rust.contains("zrow::Face<'static, u8>"));
+    // A strip of triangles: emitted as a triangle list.
+    assert!(c.rust.contains("pub static TRIANGLES: [[u8; 3]; 254]"));
     assert!(c.rust.contains("zrow::Mesh<'static, zrow::Q16_16, u8>"));
     let c = convert_model(&off(&strip(257, 0)), &opts).unwrap();
     assert_eq!((c.vertices.len(), c.index), (257, IndexType::U16));
-    assert!(c.rust.contains("zrow::Face<'static, u16>"));
+    assert!(c.rust.contains("pub static TRIANGLES: [[u16; 3]; 255]"));
     // Unused vertices do not count: they are dropped, and the report says so.
     let c = convert_model(&off(&strip(256, 3)), &opts).unwrap();
     assert_eq!((c.vertices.len(), c.index), (256, IndexType::U8));

@@ -33,3 +33,9 @@ pub mod torus {
 pub mod cube {
     zrow::include_mesh!("cube");
 }
+
+/// `assets/models/icosphere.stl`: triangles alone, so emitted as a triangle list
+/// (`TRIANGLES` and `COLORS`, [`zrow::Faces::Triangles`]) instead of a list of faces.
+pub mod icosphere {
+    zrow::include_mesh!("icosphere");
+}

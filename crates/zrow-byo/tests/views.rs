@@ -1,13 +1,14 @@
 //! The included meshes under orientations the converter never sampled (a seed it does not
 //! use): the renderer sized by the converter never runs out of room, and draws what a
 //! generously sized one draws; the cube, a closed convex solid, is drawn exactly by culling
-//! alone at the converter's capacities.
+//! alone at the converter's capacities; the icosphere, emitted as a triangle list, draws what
+//! the same triangles as a list of faces draw.
 
 use zrow::Rgb565;
 use zrow::{
     Affine, Config, FrameBuffer, Mesh, MeshIndex, ModelScene, Object, Renderer, Scanline, Q16_16,
 };
-use zrow_byo::{cube, torus};
+use zrow_byo::{cube, icosphere, torus};
 use zrow_model::camera::{light, View};
 use zrow_model::convert::random_rotations;
 
@@ -72,5 +73,25 @@ fn the_cube_needs_culling_alone() {
             draw(&mut *cull, &cube::MESH, &rot).unwrap()
                 == draw(&mut *scan, &cube::MESH, &rot).unwrap()
         );
+    }
+}
+
+#[test]
+fn a_model_of_triangles_is_emitted_as_a_triangle_list() {
+    assert!(matches!(
+        icosphere::MESH.faces,
+        zrow::Faces::Triangles { .. }
+    ));
+    assert!(matches!(torus::MESH.faces, zrow::Faces::List(_)));
+    assert_eq!(icosphere::MESH.faces.len(), icosphere::TRIANGLES.len());
+    assert!(icosphere::COLORS.len() == 1 || icosphere::COLORS.len() == icosphere::TRIANGLES.len());
+    // The same triangles as a list of faces draw the same frames.
+    let faces: Vec<zrow::Face<'_, _>> = icosphere::MESH.faces.iter().collect();
+    let listed = Mesh::with_normals(&icosphere::VERTICES, &faces, &icosphere::NORMALS);
+    let (mut small, mut big) = (Box::new(icosphere::Renderer::new()), Box::new(Big::new()));
+    for rot in random_rotations(100, 0x1c05) {
+        let got = draw(&mut *small, &icosphere::MESH, &rot).expect("capacities hold");
+        assert!(got.iter().any(|&p| p != Rgb565::new(0, 0, 0)));
+        assert!(got == draw(&mut *big, &listed, &rot).unwrap());
     }
 }

@@ -60,7 +60,10 @@
 //!
 //! **Emit.** A Rust file of items (`include!`-able, no inner attributes; a build script's copy
 //! comes in with `zrow::include_mesh!`): `NAME`, `VERTICES`, `NORMALS`, `FACES` (`u8` or `u16`
-//! indices), `MESH` (`zrow::Mesh::with_normals`), the consts `WIDTH`, `HEIGHT`, `POLYGONS`,
+//! indices), `MESH` (`zrow::Mesh::with_normals`) — or, for a model of triangles alone,
+//! `TRIANGLES` and `COLORS` (one colour, or one per triangle) instead of `FACES`, and `MESH`
+//! from `zrow::Mesh::triangles_with_normals`: no 12-byte `zrow::Face` per face, less than half
+//! the flash — the consts `WIDTH`, `HEIGHT`, `POLYGONS`,
 //! `EDGES`, `VERTEX_SLOTS`, `ACTIVE`, and `pub type Renderer = zrow::Scanline<N, WIDTH, VERTEX_SLOTS, POLYGONS,
 //! ACTIVE>`, every public item documented, the whole report in a header comment. Colours are built with
 //! `zrow::Rgb565::new` (zrow re-exports the colour type), so the including crate needs zrow
@@ -246,7 +249,8 @@ pub struct FlashBytes {
     pub vertices: usize,
     /// `NORMALS`: 12 bytes each.
     pub normals: usize,
-    /// `FACES`: 12 bytes each (slice 8, colour 2, alpha 1, padding 1).
+    /// `FACES`: 12 bytes each (slice 8, colour 2, alpha 1, padding 1); for a model of
+    /// triangles, `COLORS`: 2 bytes each (one for all, or one per triangle).
     pub faces: usize,
     /// The index arrays the faces point to.
     pub indices: usize,
@@ -802,7 +806,11 @@ pub fn convert_model_with(
     let flash = FlashBytes {
         vertices: 12 * vertices.len(),
         normals: 12 * normals.len(),
-        faces: 12 * faces.len(),
+        faces: if triangles_only(&faces) {
+            2 * triangle_colors(&faces).len()
+        } else {
+            12 * faces.len()
+        },
         indices: faces.iter().map(|f| f.indices.len()).sum::<usize>() * index.bytes(),
         mesh: 24,
     };
@@ -1397,6 +1405,20 @@ fn vec3_literal(format: Format, v: &P3) -> String {
 }
 
 /// The Rust source (see the module doc).
+/// Whether every face is a triangle (emitted as `zrow::Faces::Triangles`).
+fn triangles_only(faces: &[ConvertedFace]) -> bool {
+    !faces.is_empty() && faces.iter().all(|f| f.indices.len() == 3)
+}
+
+/// The colours a model of triangles is emitted with: one, if every triangle has it, else one
+/// per triangle.
+fn triangle_colors(faces: &[ConvertedFace]) -> Vec<zrow::Rgb565> {
+    match faces.first() {
+        Some(f) if faces.iter().all(|g| g.color == f.color) => vec![f.color],
+        _ => faces.iter().map(|f| f.color).collect(),
+    }
+}
+
 fn emit(c: &Converted, name: &str) -> String {
     let n_type = match c.format {
         Format::Q16_16 => "zrow::Q16_16",
@@ -1434,28 +1456,52 @@ fn emit(c: &Converted, name: &str) -> String {
     for p in &c.normals {
         let _ = writeln!(s, "    {},", vec3_literal(c.format, p));
     }
-    let _ = writeln!(
-        s,
-        "];\n\n/// Faces: vertex indices counter-clockwise seen from outside, Rgb565 colours.\n\
-         pub static FACES: [zrow::Face<'static, {i_type}>; {f}] = ["
-    );
-    for face in &c.faces {
+    let rgb = |c: &zrow::Rgb565| format!("zrow::Rgb565::new({}, {}, {})", c.r(), c.g(), c.b());
+    let mesh = if triangles_only(&c.faces) {
         let _ = writeln!(
             s,
-            "    zrow::Face {{ indices: &{:?}, color: \
-             zrow::Rgb565::new({}, {}, {}), alpha: 255 }},",
-            face.indices,
-            face.color.r(),
-            face.color.g(),
-            face.color.b()
+            "];\n\n/// Triangles: vertex indices counter-clockwise seen from outside.\n\
+             pub static TRIANGLES: [[{i_type}; 3]; {f}] = ["
         );
-    }
+        for face in &c.faces {
+            let _ = writeln!(s, "    {:?},", face.indices);
+        }
+        let colors = triangle_colors(&c.faces);
+        let k = colors.len();
+        let which = if k == 1 {
+            "every triangle's"
+        } else {
+            "one per triangle"
+        };
+        let _ = writeln!(
+            s,
+            "];\n\n/// Rgb565 colours: {which}.\npub static COLORS: [zrow::Rgb565; {k}] = ["
+        );
+        for color in &colors {
+            let _ = writeln!(s, "    {},", rgb(color));
+        }
+        "zrow::Mesh::triangles_with_normals(&VERTICES, &TRIANGLES, &COLORS, &NORMALS)"
+    } else {
+        let _ = writeln!(
+            s,
+            "];\n\n/// Faces: vertex indices counter-clockwise seen from outside, Rgb565 colours.\n\
+             pub static FACES: [zrow::Face<'static, {i_type}>; {f}] = ["
+        );
+        for face in &c.faces {
+            let _ = writeln!(
+                s,
+                "    zrow::Face {{ indices: &{:?}, color: {}, alpha: 255 }},",
+                face.indices,
+                rgb(&face.color)
+            );
+        }
+        "zrow::Mesh::with_normals(&VERTICES, &FACES, &NORMALS)"
+    };
     let cap = &c.capacities;
     let _ = writeln!(
         s,
         "];\n\n/// The mesh, for a [`zrow::Object`].\n\
-         pub static MESH: zrow::Mesh<'static, {n_type}, {i_type}> =\n    \
-         zrow::Mesh::with_normals(&VERTICES, &FACES, &NORMALS);\n\n\
+         pub static MESH: zrow::Mesh<'static, {n_type}, {i_type}> =\n    {mesh};\n\n\
          /// Row width the capacities were measured for (pixels).\npub const WIDTH: usize = {};\n\
          /// Frame height the capacities were measured for (pixels).\npub const HEIGHT: usize = {};\n\
          /// Polygon table capacity: most polygons on screen in any orientation, plus the margin.\n\

@@ -295,6 +295,20 @@ impl<'a, N, I> Mesh<'a, N, I> {
             normals: &[],
         }
     }
+    /// [`Mesh::triangles`] with one precomputed model-space unit normal per triangle (see
+    /// [`Mesh::normals`]): what the model converter emits for a model of triangles.
+    pub const fn triangles_with_normals(
+        vertices: &'a [Vec3<N>],
+        indices: &'a [[I; 3]],
+        colors: &'a [Rgb565],
+        normals: &'a [Vec3<N>],
+    ) -> Self {
+        Mesh {
+            vertices,
+            faces: Faces::Triangles { indices, colors },
+            normals,
+        }
+    }
     /// A mesh with one precomputed model-space unit normal per face (see [`Mesh::normals`]).
     pub const fn with_normals(
         vertices: &'a [Vec3<N>],
