@@ -29,7 +29,6 @@ use stm32f4xx_hal::{
     spi::{Mode, Phase, Polarity},
 };
 use zrow::Q16_16;
-use zrow_demo::{Rows, ROW_BYTES, WINDOW};
 
 /// System clock.
 const SYSCLK_HZ: u32 = 100_000_000;
@@ -39,8 +38,6 @@ const SYSCLK_HZ: u32 = 100_000_000;
 type Renderer = zrow::scanline_for!(Q16_16, zrow_scenes::DEMO_REQUIREMENTS, uncued);
 
 static RENDERER: ConstStaticCell<Renderer> = ConstStaticCell::new(Renderer::new());
-static ROW_A: ConstStaticCell<[u8; ROW_BYTES]> = ConstStaticCell::new([0; ROW_BYTES]);
-static ROW_B: ConstStaticCell<[u8; ROW_BYTES]> = ConstStaticCell::new([0; ROW_BYTES]);
 
 #[entry]
 fn main() -> ! {
@@ -78,8 +75,6 @@ fn main() -> ! {
 
     let streams = StreamsTuple::new(dp.DMA2, &mut rcc);
     let link = link::Link::new(streams.3, spi.use_dma().tx());
-    let Ok(mut rows) = Rows::new(link, dc, WINDOW, ROW_A.take(), ROW_B.take()) else {
-        panic!("the window does not fit the row buffers");
-    };
+    let mut rows = zrow_demo::rows(link, dc);
     zrow_demo::run(RENDERER.take(), &mut rows, &zrow_demo::ALL, SYSCLK_HZ)
 }

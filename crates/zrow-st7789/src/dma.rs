@@ -99,11 +99,6 @@ impl<L: DmaLink<B>, DC: OutputPin, const B: usize, const H: usize> DmaRows<L, DC
         })
     }
 
-    /// The link, e.g. to read a board's own counters.
-    pub fn link(&self) -> &L {
-        &self.link
-    }
-
     /// Waits until the last row handed over has left (the DMA engine and the SPI idle).
     pub fn flush(&mut self) {
         self.link.flush();

@@ -25,7 +25,6 @@ use stm32f1xx_hal::{
     spi::{Mode, Phase, Polarity},
 };
 use zrow::Q16_16;
-use zrow_demo::{Rows, ROW_BYTES, WINDOW};
 
 /// System clock.
 const SYSCLK_HZ: u32 = 72_000_000;
@@ -41,8 +40,6 @@ type Renderer = zrow::scanline_for!(
 );
 
 static RENDERER: ConstStaticCell<Renderer> = ConstStaticCell::new(Renderer::new());
-static ROW_A: ConstStaticCell<[u8; ROW_BYTES]> = ConstStaticCell::new([0; ROW_BYTES]);
-static ROW_B: ConstStaticCell<[u8; ROW_BYTES]> = ConstStaticCell::new([0; ROW_BYTES]);
 
 #[entry]
 fn main() -> ! {
@@ -83,8 +80,6 @@ fn main() -> ! {
 
     let dma = dp.DMA1.split(&mut rcc);
     let link = link::Link::new(spi.with_tx_dma(dma.3));
-    let Ok(mut rows) = Rows::new(link, dc, WINDOW, ROW_A.take(), ROW_B.take()) else {
-        panic!("the window does not fit the row buffers");
-    };
+    let mut rows = zrow_demo::rows(link, dc);
     zrow_demo::run(RENDERER.take(), &mut rows, &SCENES, SYSCLK_HZ)
 }
