@@ -98,18 +98,21 @@ mutant() { # name, then a python snippet editing the text of file $2 in the copy
   sed -i "s#path = \"\\.\\./\\.\\./crates/zrow-st7789\"#path = \"../zrow-st7789\"#; s#path = \"\\.\\./\\.\\./#path = \"$root/#g" "$copy/demo/Cargo.toml"
   # Outside the repository's workspace: what it inherits from there, spelled out.
   "$py" - "$root" "$copy/zrow-st7789/Cargo.toml" <<'PY'
-import re, sys, tomllib
+import re, sys
 root, path = sys.argv[1], sys.argv[2]
-ws = tomllib.load(open(f"{root}/Cargo.toml", "rb"))["workspace"]
-def value(v):
-    if isinstance(v, str):
-        return f'"{v}"'
-    return "{ " + ", ".join(f'{k} = "{root}/{x}"' if k == "path" else f"{k} = {value(x)}"
-                            for k, x in v.items()) + " }"
+# `key = value` lines of the workspace's [workspace.package] and [workspace.dependencies]
+# (plain lines: no TOML library needed on any Python 3), paths made absolute.
+values, section = {}, None
+for line in open(f"{root}/Cargo.toml"):
+    line = line.strip()
+    if line.startswith("["):
+        section = line
+    elif section in ("[workspace.package]", "[workspace.dependencies]") and " = " in line:
+        key, value = line.split(" = ", 1)
+        values[key] = value.replace('path = "', f'path = "{root}/')
 text = open(path).read()
-text = re.sub(r"^([\w-]+)\.workspace = true$",
-              lambda m: f"{m[1]} = {value(ws['package'].get(m[1]) or ws['dependencies'][m[1]])}",
-              text, flags=re.M)
+text = re.sub(r"^([\w-]+)\.workspace = true$", lambda m: f"{m[1]} = {values[m[1]]}", text,
+              flags=re.M)
 open(path, "w").write(text)
 PY
   sed -i "s#\"\\.\\./memory.x\"#\"$root/memory.x\"#g" "$copy/build.rs"
