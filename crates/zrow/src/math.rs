@@ -18,11 +18,21 @@ use crate::number::Scalar;
 /// Micromath is smaller and, on a Cortex-M without a fast divider, faster; its errors move
 /// vertices (trig) and change face intensities (sqrt). [`Scalar::sqrt`] itself is always exact
 /// (Q16.16: floor-exact; f32: refined to 1 ULP); `MathLib` picks what lighting uses.
+///
+/// In the fixed-point formats [`MathLib::Libm`] does not call libm: rotations
+/// ([`Affine::rotate_yx_translate_with`]) and the field of view
+/// ([`crate::Projection::perspective_with`]) take their sines and cosines from
+/// [`crate::number::sin_cos_q31`], integer arithmetic within 2^-30 of the exact values, and
+/// round each matrix entry once to the format: at least as exact as libm's `f32` results
+/// rounded to the format, and no floating-point library in a fixed-point program (libm's
+/// `sinf` computes in `f64`, software on a Cortex-M4F, 6 KB of flash with its argument
+/// reduction). Angles must then be below 2^23 radians in magnitude (`None` otherwise).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum MathLib {
     /// `micromath` 2.1: fast approximations.
     Micromath,
-    /// `libm` 0.2 (a port of musl's libm): exact to about one ULP.
+    /// `libm` 0.2 (a port of musl's libm): exact to about one ULP. Fixed-point formats:
+    /// exact integer sines instead (see above).
     #[default]
     Libm,
 }
@@ -175,6 +185,35 @@ impl<N: Scalar> Affine<N> {
         pitch: f32,
         t: [f32; 3],
     ) -> Option<Self> {
+        if N::EXACT_STEPS {
+            if math == MathLib::Libm {
+                return Self::rotate_yx_translate_exact(yaw, pitch, t);
+            }
+            // Fixed point with micromath: no libm linked into a fixed-point program.
+            return Self::rotate_yx_translate_f32(MathLib::Micromath, yaw, pitch, t);
+        }
+        Self::rotate_yx_translate_f32(math, yaw, pitch, t)
+    }
+    /// The fixed-point formats' exact rotation: sines and cosines in integers
+    /// ([`crate::number::sin_cos_q31`], within 2^-30), each entry (a product of two of them)
+    /// formed exactly and rounded once to the format. No floating-point trigonometry: a
+    /// fixed-point program that turns its objects this way links no float library.
+    fn rotate_yx_translate_exact(yaw: f32, pitch: f32, t: [f32; 3]) -> Option<Self> {
+        let (sy, cy) = crate::number::sin_cos_q31(yaw)?;
+        let (sp, cp) = crate::number::sin_cos_q31(pitch)?;
+        // Products of two 1.31 values: 2.62 fixed point.
+        let e = |a: i64, b: i64| N::from_scaled(a * b, 62);
+        let one = 1i64 << 31;
+        Some(Affine {
+            m: [
+                [e(cy, one)?, N::ZERO, e(sy, one)?, N::from_f32(t[0])?],
+                [e(sp, sy)?, e(cp, one)?, e(-sp, cy)?, N::from_f32(t[1])?],
+                [e(-cp, sy)?, e(sp, one)?, e(cp, cy)?, N::from_f32(t[2])?],
+            ],
+        })
+    }
+    /// The rotation computed in `f32` with `math`'s sines and cosines, converted.
+    fn rotate_yx_translate_f32(math: MathLib, yaw: f32, pitch: f32, t: [f32; 3]) -> Option<Self> {
         let (sy, cy) = (math.sin(yaw), math.cos(yaw));
         let (sp, cp) = (math.sin(pitch), math.cos(pitch));
         // R = Rx(pitch) · Ry(yaw)
@@ -189,9 +228,7 @@ impl<N: Scalar> Affine<N> {
     /// large the partial sums); a coordinate beyond the format saturates, with the exact
     /// result's sign. [`Affine::apply_checked`] says so instead.
     pub fn apply(&self, p: Vec3<N>) -> Vec3<N> {
-        let row = |r: &[N; 4]| {
-            N::affine_row(r, [p.x, p.y, p.z]).unwrap_or_else(|| saturated(r, [p.x, p.y, p.z]))
-        };
+        let row = |r: &[N; 4]| N::affine_row_saturating(r, [p.x, p.y, p.z]);
         Vec3::new(row(&self.m[0]), row(&self.m[1]), row(&self.m[2]))
     }
     /// [`Affine::apply`], or `None` if a coordinate of the result does not fit the format (or,
@@ -261,25 +298,9 @@ impl<N: Scalar> Affine<N> {
                 let t = if c == 3 { self.m[r][3] } else { N::ZERO };
                 let row = [self.m[r][0], self.m[r][1], self.m[r][2], t];
                 let col = [o.m[0][c], o.m[1][c], o.m[2][c]];
-                out.m[r][c] = N::affine_row(&row, col).unwrap_or_else(|| saturated(&row, col));
+                out.m[r][c] = N::affine_row_saturating(&row, col);
             }
         }
         out
-    }
-}
-
-/// The format's end with the sign of the exact `row · (p, 1)`, for a result beyond the format
-/// (`NaN` input gives zero).
-fn saturated<N: Scalar>(row: &[N; 4], p: [N; 3]) -> N {
-    let v = row[0].to_f64() * p[0].to_f64()
-        + row[1].to_f64() * p[1].to_f64()
-        + row[2].to_f64() * p[2].to_f64()
-        + row[3].to_f64();
-    if v > 0.0 {
-        N::MAX
-    } else if v < 0.0 {
-        N::MAX.neg()
-    } else {
-        N::ZERO
     }
 }

@@ -26,6 +26,9 @@
 use crate::raster::RasterVertex;
 
 mod div;
+mod trig;
+
+pub use trig::{sin_cos_q31, TRIG_LIMIT};
 
 /// Signed fixed point with 16 integer and 16 fractional bits (range ±32768, LSB 2^-16).
 #[allow(non_camel_case_types)]
@@ -94,6 +97,10 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
 
     /// Converts from `f32`; `None` for NaN, infinity or a value outside the format's range.
     fn from_f32(v: f32) -> Option<Self>;
+    /// The format's value nearest `v · 2^-frac` (`frac ≤ 62`; a tie rounds up), or `None` if
+    /// it does not fit: how values computed in integers (the sines of [`sin_cos_q31`]) reach
+    /// the format.
+    fn from_scaled(v: i64, frac: u32) -> Option<Self>;
     /// Converts to `f32` (for reports and tests; rounding to nearest).
     fn to_f32(self) -> f32;
     /// Converts to `f64`, exactly (every format fits an `f64`'s 53-bit mantissa).
@@ -138,6 +145,10 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     /// nearest, so the result is within half a unit of the last place whatever the partial
     /// sums do. `None` if the result does not fit the format (or, in f32, is not finite).
     fn affine_row(row: &[Self; 4], p: [Self; 3]) -> Option<Self>;
+    /// [`Scalar::affine_row`], or where the result does not fit, the format's end with the
+    /// exact result's sign (±[`Scalar::MAX`]; zero for NaN input). Fixed point decides the
+    /// sign in integers, so a fixed-point program links no floating point for it.
+    fn affine_row_saturating(row: &[Self; 4], p: [Self; 3]) -> Self;
     /// The direction of the face normal `(b − a) × (c − a)`, scaled by a power of two (f32: by
     /// the reciprocal of its largest component) so that its largest component lies in
     /// [1/2, 1]: a direction with the format's full precision, for lighting, without a
@@ -217,11 +228,36 @@ fn div_round(n: i128, d: i128) -> i128 {
             return div::div_round(n, d) as i128;
         }
     }
+    let q = udiv_u128(n.unsigned_abs().saturating_add(d as u128 >> 1), d as u128) as i128;
     if n >= 0 {
-        (n + d / 2) / d
+        q
     } else {
-        -((-n + d / 2) / d)
+        -q
     }
+}
+
+/// `n / d` (floor) for `d > 0`, one quotient bit a step. Only the cold 128-bit paths divide
+/// in 128 bits (degenerate or off-screen polygons, far beyond the screen): the library's
+/// 128-bit division is about 2 KB of flash on a 32-bit core, this is a tenth of it, at up to
+/// 128 short steps a division.
+#[inline(never)]
+#[cold]
+fn udiv_u128(n: u128, d: u128) -> u128 {
+    if n < d {
+        return 0;
+    }
+    let shift = d.leading_zeros() - n.leading_zeros();
+    let (mut r, mut q) = (n, 0u128);
+    let mut sub = d << shift;
+    for _ in 0..=shift {
+        q <<= 1;
+        if r >= sub {
+            r -= sub;
+            q |= 1;
+        }
+        sub >>= 1;
+    }
+    q
 }
 
 fn sat_i32(v: i128) -> i32 {
@@ -413,6 +449,15 @@ macro_rules! impl_fixed {
             fn from_f32(v: f32) -> Option<Self> {
                 $t::checked_from_num(v)
             }
+            fn from_scaled(v: i64, frac: u32) -> Option<Self> {
+                let f = $t::FRAC_NBITS;
+                let raw = if frac > f {
+                    ((v >> (frac - f - 1).min(63)) + 1) >> 1
+                } else {
+                    v.checked_mul(1 << (f - frac))?
+                };
+                i32::try_from(raw).ok().map($t::from_bits)
+            }
             fn to_f32(self) -> f32 {
                 self.to_num::<f32>()
             }
@@ -507,6 +552,20 @@ macro_rules! impl_fixed {
                     }
                 };
                 i32::try_from(rounded).ok().map($t::from_bits)
+            }
+            fn affine_row_saturating(row: &[Self; 4], p: [Self; 3]) -> Self {
+                Self::affine_row(row, p).unwrap_or_else(|| {
+                    let wide = |a: Self, b: Self| a.to_bits() as i128 * b.to_bits() as i128;
+                    let v = wide(row[0], p[0])
+                        + wide(row[1], p[1])
+                        + wide(row[2], p[2])
+                        + ((row[3].to_bits() as i128) << $t::FRAC_NBITS);
+                    match v.signum() {
+                        1 => $t::MAX,
+                        -1 => -$t::MAX,
+                        _ => $t::ZERO,
+                    }
+                })
             }
             fn face_normal(a: [Self; 3], b: [Self; 3], c: [Self; 3]) -> Option<[Self; 3]> {
                 // Edges below 2^15 (a model's edges, nearly always): the cross product fits
@@ -670,6 +729,10 @@ impl Scalar for f32 {
     fn from_f32(v: f32) -> Option<Self> {
         v.is_finite().then_some(v)
     }
+    fn from_scaled(v: i64, frac: u32) -> Option<Self> {
+        // 2^-frac is a normal f32 for frac ≤ 126: the scaling is exact.
+        Some(v as f32 * f32::from_bits((127 - frac.min(126)) << 23))
+    }
     fn to_f32(self) -> f32 {
         self
     }
@@ -710,6 +773,20 @@ impl Scalar for f32 {
     fn affine_row(row: &[Self; 4], p: [Self; 3]) -> Option<Self> {
         let v = row[0] * p[0] + row[1] * p[1] + row[2] * p[2] + row[3];
         v.is_finite().then_some(v)
+    }
+    fn affine_row_saturating(row: &[Self; 4], p: [Self; 3]) -> Self {
+        Self::affine_row(row, p).unwrap_or_else(|| {
+            // The sign of the sum in f64 (each product exact, the sum nearly so).
+            let w = |a: f32, b: f32| a as f64 * b as f64;
+            let v = w(row[0], p[0]) + w(row[1], p[1]) + w(row[2], p[2]) + row[3] as f64;
+            if v > 0.0 {
+                f32::MAX
+            } else if v < 0.0 {
+                -f32::MAX
+            } else {
+                0.0
+            }
+        })
     }
     fn face_normal(a: [Self; 3], b: [Self; 3], c: [Self; 3]) -> Option<[Self; 3]> {
         let e1 = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
@@ -841,6 +918,44 @@ impl Scalar for f32 {
 mod tests {
     use super::*;
 
+    /// The compact 128-bit division against the library's, on wide operands (a fixed
+    /// xorshift sequence) and on the edges.
+    #[test]
+    fn udiv_u128_matches_the_library() {
+        let mut s = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            s
+        };
+        for _ in 0..20_000 {
+            let wide = |a: u64, b: u64, k: u64| ((a as u128) << 64 | b as u128) >> (k % 128);
+            let n = wide(next(), next(), next());
+            let d = wide(next(), next(), next()).max(1);
+            assert_eq!(udiv_u128(n, d), n / d, "{n} / {d}");
+            let r = |v: u128| v as i128 >> 2;
+            let sign = if next() & 1 == 0 { 1 } else { -1 };
+            let (n, d) = (r(n) * sign, r(d).max(1));
+            let want = if n >= 0 {
+                (n + d / 2) / d
+            } else {
+                -((-n + d / 2) / d)
+            };
+            assert_eq!(div_round(n, d), want, "{n} / {d}");
+        }
+        for (n, d) in [
+            (0, 1),
+            (1, 1),
+            (u128::MAX, 1),
+            (u128::MAX, u128::MAX),
+            (5, 7),
+            (7, 5),
+        ] {
+            assert_eq!(udiv_u128(n, d), n / d);
+        }
+    }
+
     /// The same unit tests for every fixed-point format: `$t` and its fractional bits `$f`
     /// (written out, not read from the type, so a wrong shift in `impl_fixed!` shows).
     macro_rules! fixed_tests {
@@ -864,6 +979,22 @@ mod tests {
                         Some(i32::MIN)
                     );
                     assert_eq!(<$t as Scalar>::from_f32(f32::NAN), None);
+                }
+
+                #[test]
+                fn from_scaled_rounds_to_nearest() {
+                    let s =
+                        |v: i64, frac: u32| <$t as Scalar>::from_scaled(v, frac).map($t::to_bits);
+                    // 2^-(F+1) is half a unit: rounds up; a hair less rounds down.
+                    assert_eq!(s(1, $f + 1), Some(1));
+                    assert_eq!(s((1 << 20) - 1, $f + 21), Some(0));
+                    assert_eq!(s(-(1 << 20) - 1, $f + 21), Some(-1));
+                    assert_eq!(s(-(3 << 40), $f + 41), Some(-1));
+                    assert_eq!(s(5, $f), Some(5));
+                    assert_eq!(s(5, $f - 1), Some(10));
+                    assert_eq!(s(i64::MAX, 62), Some(2 << $f));
+                    assert_eq!(s(1 << 31, 0), None);
+                    assert_eq!(s(i64::MAX, 0), None);
                 }
 
                 #[test]

@@ -455,9 +455,25 @@ impl<N: Scalar> Projection<N> {
         near: f32,
         far: f32,
     ) -> Option<Self> {
-        let focal = 1.0 / math.tan(fov_y * 0.5);
+        let focal = if N::EXACT_STEPS {
+            if math == crate::math::MathLib::Libm {
+                // cos/sin of the half angle in integers, exact to 2^-30 each
+                // (`number::sin_cos_q31`): no float trigonometry in a fixed-point program.
+                let (s, c) = crate::number::sin_cos_q31(fov_y * 0.5)?;
+                if s == 0 {
+                    return None;
+                }
+                // c/s in units of 2^-31, rounded; |c| ≤ 2^31 so |c|·2^31 fits.
+                let q = ((c.abs() << 31) + s.abs() / 2) / s.abs() * (c.signum() * s.signum());
+                N::from_scaled(q, 31)?
+            } else {
+                N::from_f32(1.0 / crate::math::MathLib::Micromath.tan(fov_y * 0.5))?
+            }
+        } else {
+            N::from_f32(1.0 / math.tan(fov_y * 0.5))?
+        };
         Some(Projection::Perspective {
-            focal: N::from_f32(focal)?,
+            focal,
             near: N::from_f32(near)?,
             far: N::from_f32(far)?,
         })
