@@ -34,9 +34,11 @@ check() {
   esac
 }
 
-# The F411 (512 KB flash, 128 KB RAM): the figures when last set, plus about 10 %.
+# The F411 (512 KB flash, 128 KB RAM): its demo, the three scenes' meshes included, in 64 KB
+# of flash (65,108 bytes when set: the budget is the target, not the figure plus 10 %), and
+# static RAM at the figure plus about 10 % (24,004 bytes when set).
 check firmware firmware target/thumbv7em-none-eabihf/release/zrow-firmware \
-  zrow_firmware::RENDERER $((84 * 1024)) $((29 * 1024))
+  zrow_firmware::RENDERER $((64 * 1024)) $((26 * 1024))
 # The Blue Pill (64 KB flash, 20 KB RAM).
 check bluepill firmware/bluepill target/thumbv7m-none-eabi/release/zrow-bluepill \
   zrow_bluepill::RENDERER $((64 * 1024)) $((20 * 1024 - 3064))

@@ -211,7 +211,12 @@ mod tests {
             let q = zrow_scenes::mesh::<Q16_16>(name).unwrap();
             let f = zrow_scenes::mesh::<f32>(name).unwrap();
             assert_eq!(q.vertices.len(), ours.vertices.len());
-            for ((v, q), f) in ours.vertices.iter().zip(q.vertices).zip(f.vertices) {
+            for ((v, q), f) in ours
+                .vertices
+                .iter()
+                .zip(q.vertices.iter())
+                .zip(f.vertices.iter())
+            {
                 assert_eq!([f.x, f.y, f.z], *v);
                 let bits = v.map(|c| (c as f64 * 65536.0) as i32);
                 assert_eq!([q.x.to_bits(), q.y.to_bits(), q.z.to_bits()], bits);

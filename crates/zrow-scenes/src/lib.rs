@@ -47,8 +47,8 @@ use embedded_graphics_core::pixelcolor::Rgb565;
 use zrow::presets::Preset;
 use zrow::shading::{DepthCue, Interpolation};
 use zrow::{
-    Affine, Camera, Config, Face, Light, MathLib, Mesh, ModelScene, Object, Scalar, Scene,
-    ScreenScene, Vec3, Q16_16, Q24_8,
+    Affine, Camera, Config, Face, Light, MathLib, Mesh, ModelScene, Object, Positions, Scalar,
+    Scene, ScreenScene, Vec3, Q16_16, Q24_8,
 };
 
 mod meshes {
@@ -65,6 +65,18 @@ pub const FOLEY: [&str; 2] = ["foley100", "foley2500"];
 
 /// The demo scenes, in the order the simulator and the board show them.
 pub const DEMOS: [&str; 3] = ["interlocked", "cube", "mesh1k"];
+
+/// How far a board's demo turns a frame, radians.
+pub const BOARD_STEP: f32 = 0.03;
+/// Frames after which a board's demo angle starts again from 0: 1,885 steps are nine turns
+/// and 0.0012 rad, so the wrap does not show, and the angle stays small (an `f32` frame count
+/// times the step would lose its precision after 2^24 frames, four days at 50 fps).
+pub const BOARD_PERIOD: u32 = 1_885;
+
+/// The angle a board's demo draws frame `frame` at.
+pub fn board_angle(frame: u32) -> f32 {
+    (frame % BOARD_PERIOD) as f32 * BOARD_STEP
+}
 
 /// What each demo scene needs at most (Q16.16, 240×240, [`with_demo`]), measured over 2,048
 /// angles of a turn and the board's first 3,000 frames (0.03 rad each), in the order of
@@ -105,16 +117,39 @@ pub const DEMO_REQUIREMENTS: zrow::Requirements = DEMO_MEASURED.with_margin(5);
 /// Frame size of every standard scene.
 pub const SIZE: u16 = 240;
 
-/// A number format the scenes exist in: each has its own const positions.
+/// The model meshes' (cube, torus, ring) positions are compact 16-bit integers at
+/// 2^-`MODEL_SHIFT` (`zrow::Positions::Compact`): one table for every number format, 6 bytes a
+/// vertex, exact in every format (a multiple of 2^-14 is one of Q16.16 and of f32; Q24.8
+/// rounds it to its 2^-8).
+pub const MODEL_SHIFT: u8 = 14;
+
+/// Compact positions at [`MODEL_SHIFT`].
+const fn compact<N>(raw: &'static [[i16; 3]]) -> Positions<'static, N> {
+    Positions::Compact {
+        raw,
+        shift: MODEL_SHIFT,
+    }
+}
+
+/// The cube's faces over its compact positions.
+fn cube_with<N>(faces: &'static [Face<'static>]) -> Mesh<'static, N> {
+    Mesh::new(&[], faces).with_positions(compact(&meshes::CUBE_I16))
+}
+
+/// Triangles over compact positions.
+fn compact_triangles<N>(
+    raw: &'static [[i16; 3]],
+    indices: &'static [[u16; 3]],
+    colors: &'static [Rgb565],
+) -> Mesh<'static, N> {
+    Mesh::triangles(&[], indices, colors).with_positions(compact(raw))
+}
+
+/// A number format the screen-space scenes exist in: each has its own const positions (the
+/// model meshes' compact positions serve every format).
 pub trait Format: Scalar {
-    /// Cube positions.
-    fn cube() -> &'static [Vec3<Self>];
-    /// Torus positions.
-    fn torus() -> &'static [Vec3<Self>];
     /// Random triangles' positions (screen space).
     fn random400() -> &'static [Vec3<Self>];
-    /// The demo's ring (a 16 × 8 torus) positions.
-    fn ring() -> &'static [Vec3<Self>];
     /// The 100-triangle comparison scene's positions (screen space).
     fn foley100() -> &'static [Vec3<Self>];
     /// The 2,500-triangle comparison scene's positions (screen space).
@@ -122,17 +157,8 @@ pub trait Format: Scalar {
 }
 
 impl Format for f32 {
-    fn cube() -> &'static [Vec3<f32>] {
-        &meshes::CUBE_F32
-    }
-    fn torus() -> &'static [Vec3<f32>] {
-        &meshes::TORUS_F32
-    }
     fn random400() -> &'static [Vec3<f32>] {
         &meshes::RANDOM400_F32
-    }
-    fn ring() -> &'static [Vec3<f32>] {
-        &meshes::RING_F32
     }
     fn foley100() -> &'static [Vec3<f32>] {
         &meshes::FOLEY100_F32
@@ -143,17 +169,8 @@ impl Format for f32 {
 }
 
 impl Format for Q16_16 {
-    fn cube() -> &'static [Vec3<Q16_16>] {
-        &meshes::CUBE_Q16_16
-    }
-    fn torus() -> &'static [Vec3<Q16_16>] {
-        &meshes::TORUS_Q16_16
-    }
     fn random400() -> &'static [Vec3<Q16_16>] {
         &meshes::RANDOM400_Q16_16
-    }
-    fn ring() -> &'static [Vec3<Q16_16>] {
-        &meshes::RING_Q16_16
     }
     fn foley100() -> &'static [Vec3<Q16_16>] {
         &meshes::FOLEY100_Q16_16
@@ -164,17 +181,8 @@ impl Format for Q16_16 {
 }
 
 impl Format for Q24_8 {
-    fn cube() -> &'static [Vec3<Q24_8>] {
-        &meshes::CUBE_Q24_8
-    }
-    fn torus() -> &'static [Vec3<Q24_8>] {
-        &meshes::TORUS_Q24_8
-    }
     fn random400() -> &'static [Vec3<Q24_8>] {
         &meshes::RANDOM400_Q24_8
-    }
-    fn ring() -> &'static [Vec3<Q24_8>] {
-        &meshes::RING_Q24_8
     }
     fn foley100() -> &'static [Vec3<Q24_8>] {
         &meshes::FOLEY100_Q24_8
@@ -189,16 +197,16 @@ pub fn mesh<N: Format>(name: &str) -> Option<Mesh<'static, N>> {
     use meshes::*;
     let triangles = Mesh::triangles;
     Some(match name {
-        "cube" => Mesh::new(N::cube(), &CUBE_FACES),
-        "mesh1k" => triangles(N::torus(), &TORUS_TRIANGLES, &TORUS_COLORS),
+        "cube" => cube_with(&CUBE_FACES),
+        "mesh1k" => compact_triangles(&TORUS_I16, &TORUS_TRIANGLES, &TORUS_COLORS),
         "random400" => triangles(N::random400(), &RANDOM400_TRIANGLES, &RANDOM400_COLORS),
         "foley100" => triangles(N::foley100(), &FOLEY100_TRIANGLES, &FOLEY100_COLORS),
         "foley2500" => triangles(N::foley2500(), &FOLEY2500_TRIANGLES, &FOLEY2500_COLORS),
-        "ring" => triangles(N::ring(), &RING_TRIANGLES, &RING_COLORS),
+        "ring" => compact_triangles(&RING_I16, &RING_TRIANGLES, &RING_COLORS),
         // The interlocked demo's objects: one colour each.
-        "ring-warm" => triangles(N::ring(), &RING_TRIANGLES, &RING_WARM_COLOR),
-        "ring-cool" => triangles(N::ring(), &RING_TRIANGLES, &RING_COOL_COLOR),
-        "cube-plain" => Mesh::new(N::cube(), &CUBE_PLAIN_FACES),
+        "ring-warm" => compact_triangles(&RING_I16, &RING_TRIANGLES, &RING_WARM_COLOR),
+        "ring-cool" => compact_triangles(&RING_I16, &RING_TRIANGLES, &RING_COOL_COLOR),
+        "cube-plain" => cube_with(&CUBE_PLAIN_FACES),
         _ => return None,
     })
 }
@@ -321,7 +329,7 @@ pub mod demo {
         angle: f32,
         f: impl FnOnce(&dyn Scene<N>, &Config, usize) -> R,
     ) -> Option<R> {
-        let mesh = Mesh::new(N::cube(), &meshes::CUBE_FACES);
+        let mesh = cube_with(&meshes::CUBE_FACES);
         model(mesh, angle, MathLib::Libm, f)
     }
 
@@ -330,7 +338,11 @@ pub mod demo {
         angle: f32,
         f: impl FnOnce(&dyn Scene<N>, &Config, usize) -> R,
     ) -> Option<R> {
-        let mesh = Mesh::triangles(N::torus(), &meshes::TORUS_TRIANGLES, &meshes::TORUS_COLORS);
+        let mesh = compact_triangles(
+            &meshes::TORUS_I16,
+            &meshes::TORUS_TRIANGLES,
+            &meshes::TORUS_COLORS,
+        );
         model(mesh, angle, MathLib::Libm, f)
     }
 }
@@ -368,9 +380,17 @@ fn interlocked<N: Format, R>(
     math: MathLib,
     f: impl FnOnce(&dyn Scene<N>, &Config, usize) -> R,
 ) -> Option<R> {
-    let warm = Mesh::triangles(N::ring(), &meshes::RING_TRIANGLES, &meshes::RING_WARM_COLOR);
-    let cool = Mesh::triangles(N::ring(), &meshes::RING_TRIANGLES, &meshes::RING_COOL_COLOR);
-    let cube = Mesh::new(N::cube(), &meshes::CUBE_PLAIN_FACES);
+    let warm = compact_triangles(
+        &meshes::RING_I16,
+        &meshes::RING_TRIANGLES,
+        &meshes::RING_WARM_COLOR,
+    );
+    let cool = compact_triangles(
+        &meshes::RING_I16,
+        &meshes::RING_TRIANGLES,
+        &meshes::RING_COOL_COLOR,
+    );
+    let cube = cube_with(&meshes::CUBE_PLAIN_FACES);
     let [a, b, c] = interlocked_turns::<N>(angle, math)?;
     let objects = [
         Object {

@@ -14,7 +14,7 @@ fn demos_fit_the_board_renderer_over_a_full_turn() {
         // A turn, and the board's own angles (0.03 rad a frame) over its first frames.
         let angles = (0..256)
             .map(|k| k as f32 * core::f32::consts::TAU / 256.0)
-            .chain((0..400).map(|f| f as f32 * 0.03));
+            .chain((0..400).map(zrow_scenes::board_angle));
         for angle in angles {
             let req = zrow_scenes::with_demo::<Q16_16, _>(name, angle, |scene, cfg, _| {
                 requirements(scene, cfg).unwrap()
@@ -83,4 +83,17 @@ fn with_demo_draws_what_with_scene_draws() {
         }
     }
     assert!(zrow_scenes::with_demo::<Q16_16, _>("foley100", 0.0, |_, _, _| ()).is_none());
+}
+
+/// The board's angle wraps to 0 after a whole number of turns, within 0.002 rad, so the wrap
+/// does not show; the angle never grows past the period.
+#[test]
+fn board_angle_wraps_where_it_does_not_show() {
+    use zrow_scenes::{board_angle, BOARD_PERIOD, BOARD_STEP};
+    let span = BOARD_PERIOD as f64 * BOARD_STEP as f64;
+    let off = span % core::f64::consts::TAU;
+    assert!(off.min(core::f64::consts::TAU - off) < 0.002, "{off}");
+    assert_eq!(board_angle(BOARD_PERIOD), 0.0);
+    assert_eq!(board_angle(1), BOARD_STEP);
+    assert!(board_angle(u32::MAX) < span as f32);
 }

@@ -1,21 +1,43 @@
-//! The scenes in every number format: the Q24.8 arrays are the f32 positions rounded to the
-//! nearest 1/256, and every scene renders in Q24.8, covering what Q16.16 covers wherever the
+//! The scenes in every number format: the model meshes share one compact table, the
+//! screen-space scenes' Q24.8 arrays are the f32 positions rounded to the nearest 1/256, and every scene renders in Q24.8, covering what Q16.16 covers wherever the
 //! positions are on the 1/256 grid (coverage never depends on the format, `docs/conventions.md`).
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use zrow::{FrameBuffer, Scalar, Scanline, Vec3, Q16_16, Q24_8};
 use zrow_scenes::Format;
 
-/// Every position array of a format, by name.
-fn arrays<N: Format>() -> [(&'static str, &'static [Vec3<N>]); 6] {
+/// Every screen-space position array of a format, by name.
+fn arrays<N: Format>() -> [(&'static str, &'static [Vec3<N>]); 3] {
     [
-        ("cube", N::cube()),
-        ("torus", N::torus()),
         ("random400", N::random400()),
-        ("ring", N::ring()),
         ("foley100", N::foley100()),
         ("foley2500", N::foley2500()),
     ]
+}
+
+/// The model meshes' one compact table gives every format the same positions: f32 and
+/// Q16.16 exactly (multiples of 2^-14), Q24.8 rounded to its nearest 1/256 (a tie up).
+#[test]
+fn model_positions_are_one_compact_table_in_every_format() {
+    for name in ["cube", "mesh1k", "ring"] {
+        let f = zrow_scenes::mesh::<f32>(name).unwrap().vertices;
+        let q16 = zrow_scenes::mesh::<Q16_16>(name).unwrap().vertices;
+        let q24 = zrow_scenes::mesh::<Q24_8>(name).unwrap().vertices;
+        assert!(
+            !f.is_empty() && f.len() == q16.len() && f.len() == q24.len(),
+            "{name}"
+        );
+        let shift = f32::from_bits((127 - zrow_scenes::MODEL_SHIFT as u32) << 23);
+        for ((a, b), c) in f.iter().zip(q16.iter()).zip(q24.iter()) {
+            for (x, y, z) in [(a.x, b.x, c.x), (a.y, b.y, c.y), (a.z, b.z, c.z)] {
+                assert_eq!((x / shift).fract(), 0.0, "{name}: {x} is on the 2^-14 grid");
+                assert_eq!(x, y.to_f32(), "{name}");
+                // Nearest, a tie up (`Scalar::from_scaled`).
+                let nearest = (x as f64 * 256.0 + 0.5).floor() / 256.0;
+                assert_eq!(z.to_f64(), nearest, "{name}: {x} as {z}");
+            }
+        }
+    }
 }
 
 #[test]

@@ -14,7 +14,7 @@
 //! (the backlight),
 //! `f FRAME CYCLES WAITED` (frame `FRAME` is on the panel, `CYCLES` after the previous one, of
 //! which the firmware spent `WAITED` waiting for the SPI or its DMA: the sending rendering did
-//! not hide). Frame `k` is scene `scenes[(k / N) % scenes.len()]` at angle `0.03·k`, as the
+//! not hide). Frame `k` is scene `scenes[(k / N) % scenes.len()]` at angle `zrow_scenes::board_angle(k)`, as the
 //! firmware draws it.
 //!
 //! Exits non-zero on a frame that differs, a frame shown with the backlight off, a protocol
@@ -105,10 +105,11 @@ fn main() -> ExitCode {
                 };
                 let name = scenes[(frame as u32 / per_scene) as usize % scenes.len()].0;
                 let mut want = vec![Rgb565::BLACK; 240 * 240];
-                let drawn =
-                    zrow_scenes::with_demo::<Q16_16, _>(name, frame as f32 * 0.03, |s, c, _| {
-                        renderer.render(s, c, &mut FrameBuffer::new(&mut want, 240))
-                    });
+                let drawn = zrow_scenes::with_demo::<Q16_16, _>(
+                    name,
+                    zrow_scenes::board_angle(frame as u32),
+                    |s, c, _| renderer.render(s, c, &mut FrameBuffer::new(&mut want, 240)),
+                );
                 if !matches!(drawn, Some(Ok(_))) {
                     return bad("the host could not draw this frame");
                 }

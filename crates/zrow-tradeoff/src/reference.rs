@@ -198,7 +198,11 @@ pub fn build(objs: &[Obj<'_>], cam: &Cam, light: ([f64; 3], f64), size: usize) -
                 .indices
                 .iter()
                 .map(|&i| {
-                    let p = o.mesh.vertices[i as usize];
+                    let p = o
+                        .mesh
+                        .vertices
+                        .get(i as usize)
+                        .expect("a standard scene's index");
                     mv.apply([p.x as f64, p.y as f64, p.z as f64])
                 })
                 .collect();

@@ -86,7 +86,7 @@ pub fn build<N: Scalar, I: MeshIndex, const K: usize>(
 
 /// A world-space vertex of object `o`, in `f64`.
 fn world<N: Scalar, I: MeshIndex>(o: &Object<'_, N, I>, i: usize) -> Option<[f64; 3]> {
-    let v = o.transform.apply(*o.mesh.vertices.get(i)?);
+    let v = o.transform.apply(o.mesh.vertices.get(i)?);
     Some([v.x.to_f64(), v.y.to_f64(), v.z.to_f64()])
 }
 

@@ -141,7 +141,7 @@ fn gather<N: Scalar, I: MeshIndex>(
     }
     let mut out = Vec::new();
     for &i in face.indices {
-        let v = *mesh.vertices.get(i.index()).ok_or(Error::IndexOutOfRange {
+        let v = mesh.vertices.get(i.index()).ok_or(Error::IndexOutOfRange {
             face: no,
             index: i.index() as u32,
         })?;
@@ -398,10 +398,10 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ScreenScene<'_, N, I> {
         // to the faces' clipping.
         let base = buf.claim(mesh.vertices.len());
         if let Some(b) = base {
-            for (slot, p) in buf.slots_from(b).iter_mut().zip(mesh.vertices) {
+            for (slot, p) in buf.slots_from(b).iter_mut().zip(mesh.vertices.iter()) {
                 let inside = p.x >= lo && p.x <= hx && p.y >= lo && p.y <= hy;
                 *slot = match inside && p.z.is_finite() {
-                    true => snap(p, s, 0).unwrap_or_else(|_| unprojected()),
+                    true => snap(&p, s, 0).unwrap_or_else(|_| unprojected()),
                     false => unprojected(),
                 };
             }
@@ -794,7 +794,10 @@ fn emit_clipped<N: Scalar, I: MeshIndex>(
 ) -> Result<(), Error> {
     let mut clip: Poly<ClipV<N>> = Vec::new();
     for &i in face.indices {
-        let p = mesh.vertices[i.index()];
+        let p = mesh.vertices.get(i.index()).ok_or(Error::IndexOutOfRange {
+            face: this,
+            index: i.index() as u32,
+        })?;
         let v = mv
             .apply_checked(p)
             .filter(|v| v.x.is_finite() && v.y.is_finite() && v.z.is_finite())
@@ -856,8 +859,8 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
             // projected and snapped.
             let base = buf.claim(mesh.vertices.len());
             if let Some(b) = base {
-                for (slot, v) in buf.slots_from(b).iter_mut().zip(mesh.vertices) {
-                    let c = mv.apply_checked(*v).map(|v| proj.clip(v));
+                for (slot, v) in buf.slots_from(b).iter_mut().zip(mesh.vertices.iter()) {
+                    let c = mv.apply_checked(v).map(|v| proj.clip(v));
                     *slot = c
                         .filter(|c| proj.inside(c))
                         .and_then(|c| proj.screen(&c))
@@ -869,10 +872,10 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
                     return Some([n.x, n.y, n.z]);
                 }
                 let v = |j: usize| {
-                    let p = mesh.vertices[face.indices[j].index()];
-                    [p.x, p.y, p.z]
+                    let p = mesh.vertices.get(face.indices[j].index())?;
+                    Some([p.x, p.y, p.z])
                 };
-                N::face_normal(v(0), v(1), v(2))
+                N::face_normal(v(0)?, v(1)?, v(2)?)
             };
             let count = mesh.vertices.len();
             for (k, face) in mesh.faces.iter().enumerate() {
@@ -890,8 +893,12 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
                         slots.get(b + i2).filter(|_| i2 < count),
                     ) {
                         if v0.x != UNPROJECTED && v1.x != UNPROJECTED && v2.x != UNPROJECTED {
-                            let area2 = (v1.x as i64 - v0.x as i64) * (v2.y as i64 - v0.y as i64)
-                                - (v2.x as i64 - v0.x as i64) * (v1.y as i64 - v0.y as i64);
+                            // Projected corners lie within the guard band (below 2^25
+                            // sub-pixels at any screen size): differences fit 32 bits, each
+                            // product is one 32 × 32 → 64-bit multiply.
+                            let d = |a: i32, b: i32| a.wrapping_sub(b) as i64;
+                            let area2 =
+                                d(v1.x, v0.x) * d(v2.y, v0.y) - d(v2.x, v0.x) * d(v1.y, v0.y);
                             if dropped(area2, cfg) {
                                 continue;
                             }

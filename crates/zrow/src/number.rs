@@ -101,6 +101,10 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     /// it does not fit: how values computed in integers (the sines of [`sin_cos_q31`]) reach
     /// the format.
     fn from_scaled(v: i64, frac: u32) -> Option<Self>;
+    /// `v · 2^-shift` for a compact 16-bit position ([`crate::Positions::Compact`]), in
+    /// 32-bit arithmetic: exact when the format has `shift` or more fractional bits, else
+    /// rounded to nearest (a tie up). Always fits: a 16-bit integer is below 2^15.
+    fn from_compact(v: i16, shift: u32) -> Self;
     /// Converts to `f32` (for reports and tests; rounding to nearest).
     fn to_f32(self) -> f32;
     /// Converts to `f64`, exactly (every format fits an `f64`'s 53-bit mantissa).
@@ -449,6 +453,16 @@ macro_rules! impl_fixed {
             fn from_f32(v: f32) -> Option<Self> {
                 $t::checked_from_num(v)
             }
+            #[inline]
+            fn from_compact(v: i16, shift: u32) -> Self {
+                let f = $t::FRAC_NBITS;
+                $t::from_bits(if shift <= f {
+                    // |v| ≤ 2^15 and f − shift ≤ 16: fits 32 bits (−2^31 included).
+                    (v as i32) << (f - shift)
+                } else {
+                    ((v as i32 >> (shift - f - 1).min(16)) + 1) >> 1
+                })
+            }
             fn from_scaled(v: i64, frac: u32) -> Option<Self> {
                 let f = $t::FRAC_NBITS;
                 let raw = if frac > f {
@@ -729,6 +743,10 @@ impl Scalar for f32 {
     fn from_f32(v: f32) -> Option<Self> {
         v.is_finite().then_some(v)
     }
+    #[inline]
+    fn from_compact(v: i16, shift: u32) -> Self {
+        v as f32 * f32::from_bits((127 - shift.min(126)) << 23)
+    }
     fn from_scaled(v: i64, frac: u32) -> Option<Self> {
         // 2^-frac is a normal f32 for frac ≤ 126: the scaling is exact.
         Some(v as f32 * f32::from_bits((127 - frac.min(126)) << 23))
@@ -995,6 +1013,14 @@ mod tests {
                     assert_eq!(s(i64::MAX, 62), Some(2 << $f));
                     assert_eq!(s(1 << 31, 0), None);
                     assert_eq!(s(i64::MAX, 0), None);
+                    // Compact positions: the same values as from_scaled, every shift.
+                    for shift in 0..=40u32 {
+                        for v in [0i16, 1, -1, 3, -3, 255, -256, 12345, i16::MAX, i16::MIN] {
+                            let want = s(v as i64, shift).unwrap();
+                            let got = <$t as Scalar>::from_compact(v, shift).to_bits();
+                            assert_eq!(got, want, "{v} at 2^-{shift}");
+                        }
+                    }
                 }
 
                 #[test]

@@ -255,12 +255,105 @@ impl<'a, I: Copy> Iterator for FacesIter<'a, I> {
 
 impl<I: Copy> ExactSizeIterator for FacesIter<'_, I> {}
 
+/// A mesh's vertex positions: in the number format, or compact (16-bit integers and one
+/// power-of-two scale, half the flash of a 32-bit format).
+///
+/// ```
+/// use zrow::{Positions, Q16_16, Scalar};
+/// // (0.5, -1.25, 2.0) at 2^-14: 6 bytes a vertex.
+/// static RAW: [[i16; 3]; 1] = [[8192, -20480, 32767]];
+/// let p: Positions<'_, Q16_16> = Positions::Compact { raw: &RAW, shift: 14 };
+/// let v = p.get(0).unwrap();
+/// assert_eq!((v.x.to_f32(), v.y.to_f32()), (0.5, -1.25));
+/// assert_eq!(v.z.to_bits(), 32767 << 2); // exact: 2^-14 is a multiple of 2^-16
+/// assert_eq!(p.len(), 1);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Positions<'a, N> {
+    /// Positions in the number format: 12 bytes a vertex in every format.
+    Format(&'a [Vec3<N>]),
+    /// Each coordinate is `raw · 2^-shift` (6 bytes a vertex): exact in f32, in Q16.16 for
+    /// `shift ≤ 16` and in Q24.8 for `shift ≤ 8`, rounded to nearest otherwise. With shift
+    /// 14 a model spans ±2 units in steps of 2^-14.
+    Compact {
+        /// The coordinates, scaled by 2^shift.
+        raw: &'a [[i16; 3]],
+        /// The power of two they are scaled by.
+        shift: u8,
+    },
+}
+
+impl<N: Scalar> Positions<'_, N> {
+    /// How many vertices.
+    #[inline]
+    pub const fn len(&self) -> usize {
+        match self {
+            Positions::Format(v) => v.len(),
+            Positions::Compact { raw, .. } => raw.len(),
+        }
+    }
+    /// Whether there are none.
+    pub const fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// Vertex `i` in the number format, or `None` past the end.
+    #[inline]
+    pub fn get(&self, i: usize) -> Option<Vec3<N>> {
+        match self {
+            Positions::Format(v) => v.get(i).copied(),
+            Positions::Compact { raw, shift } => raw.get(i).map(|r| compact(r, *shift)),
+        }
+    }
+    /// Every vertex in order, in the number format.
+    pub fn iter(&self) -> PositionsIter<'_, N> {
+        match self {
+            Positions::Format(v) => PositionsIter::Format(v.iter()),
+            Positions::Compact { raw, shift } => PositionsIter::Compact(raw.iter(), *shift),
+        }
+    }
+}
+
+/// The iterator of [`Positions::iter`].
+#[derive(Clone, Debug)]
+pub enum PositionsIter<'a, N> {
+    /// Over positions in the number format.
+    Format(core::slice::Iter<'a, Vec3<N>>),
+    /// Over compact positions and their shift.
+    Compact(core::slice::Iter<'a, [i16; 3]>, u8),
+}
+
+impl<N: Scalar> Iterator for PositionsIter<'_, N> {
+    type Item = Vec3<N>;
+    #[inline]
+    fn next(&mut self) -> Option<Vec3<N>> {
+        match self {
+            PositionsIter::Format(v) => v.next().copied(),
+            PositionsIter::Compact(raw, shift) => raw.next().map(|r| compact(r, *shift)),
+        }
+    }
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        match self {
+            PositionsIter::Format(v) => v.size_hint(),
+            PositionsIter::Compact(raw, _) => raw.size_hint(),
+        }
+    }
+}
+
+impl<N: Scalar> ExactSizeIterator for PositionsIter<'_, N> {}
+
+/// A compact position in the number format ([`Scalar::from_compact`]: always fits).
+#[inline]
+fn compact<N: Scalar>(r: &[i16; 3], shift: u8) -> Vec3<N> {
+    let c = |v: i16| N::from_compact(v, shift as u32);
+    Vec3::new(c(r[0]), c(r[1]), c(r[2]))
+}
+
 /// A mesh: vertices, faces and optionally one normal per face, all borrowed (so a converted
 /// model can live in flash).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Mesh<'a, N, I = u16> {
     /// Vertex positions.
-    pub vertices: &'a [Vec3<N>],
+    pub vertices: Positions<'a, N>,
     /// Faces: a list of [`Face`]s, or triangles of one colour ([`Faces`]).
     pub faces: Faces<'a, I>,
     /// Precomputed face normals, or empty. Empty: model mode computes each face's normal per
@@ -276,7 +369,7 @@ impl<'a, N, I> Mesh<'a, N, I> {
     /// A mesh whose normals model mode computes per frame.
     pub const fn new(vertices: &'a [Vec3<N>], faces: &'a [Face<'a, I>]) -> Self {
         Mesh {
-            vertices,
+            vertices: Positions::Format(vertices),
             faces: Faces::List(faces),
             normals: &[],
         }
@@ -290,7 +383,7 @@ impl<'a, N, I> Mesh<'a, N, I> {
         colors: &'a [Rgb565],
     ) -> Self {
         Mesh {
-            vertices,
+            vertices: Positions::Format(vertices),
             faces: Faces::Triangles { indices, colors },
             normals: &[],
         }
@@ -304,7 +397,7 @@ impl<'a, N, I> Mesh<'a, N, I> {
         normals: &'a [Vec3<N>],
     ) -> Self {
         Mesh {
-            vertices,
+            vertices: Positions::Format(vertices),
             faces: Faces::Triangles { indices, colors },
             normals,
         }
@@ -316,10 +409,14 @@ impl<'a, N, I> Mesh<'a, N, I> {
         normals: &'a [Vec3<N>],
     ) -> Self {
         Mesh {
-            vertices,
+            vertices: Positions::Format(vertices),
             faces: Faces::List(faces),
             normals,
         }
+    }
+    /// The same mesh with its positions from `vertices` (compact ones, say).
+    pub const fn with_positions(self, vertices: Positions<'a, N>) -> Self {
+        Mesh { vertices, ..self }
     }
     /// Checks that `normals` is empty or has one entry per face, and that triangles have one
     /// colour each or one for all.

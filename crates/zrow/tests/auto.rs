@@ -45,7 +45,7 @@ fn the_cube_is_closed_and_convex_the_torus_is_not() {
     ));
     // Open: one face missing.
     let rest: Vec<_> = cube.faces.iter().skip(1).collect();
-    let open = Mesh::new(cube.vertices, &rest);
+    let open = Mesh::new(&[], &rest).with_positions(cube.vertices);
     assert!(!closed_convex(&open));
     // Inconsistent: one face turned over.
     let flipped: Vec<Vec<u16>> = cube
@@ -64,7 +64,9 @@ fn the_cube_is_closed_and_convex_the_torus_is_not() {
         .iter()
         .map(|v| Face::new(v, Rgb565::new(31, 0, 0)))
         .collect();
-    assert!(!closed_convex(&Mesh::new(cube.vertices, &faces)));
+    assert!(!closed_convex(
+        &Mesh::new(&[], &faces).with_positions(cube.vertices)
+    ));
     // Every face turned over: closed, but inside out (faces point inwards).
     let inside_out: Vec<Vec<u16>> = cube
         .faces
@@ -75,7 +77,9 @@ fn the_cube_is_closed_and_convex_the_torus_is_not() {
         .iter()
         .map(|v| Face::new(v, Rgb565::new(31, 0, 0)))
         .collect();
-    assert!(!closed_convex(&Mesh::new(cube.vertices, &faces)));
+    assert!(!closed_convex(
+        &Mesh::new(&[], &faces).with_positions(cube.vertices)
+    ));
     assert!(!closed_convex(&Mesh::<Q16_16>::new(&[], &[])));
 }
 

@@ -879,7 +879,7 @@ fn bad_input<N: Scalar>() {
     // Bad configuration.
     let scene = ScreenScene {
         mesh: Mesh {
-            vertices: &v,
+            vertices: zrow::Positions::Format(&v),
             faces: zrow::Faces::List(&[tri]),
             normals: &[],
         },

@@ -128,7 +128,7 @@ pub fn init_panel<SPI, CS, DC, RST>(
 }
 
 /// Shows `scenes` in turn forever, each [`FRAMES_PER_SCENE`]
-/// frames, turning 0.03 rad a frame. `sysclk_hz` converts the cycle counts of the log (DWT's
+/// frames, turning 0.03 rad a frame (`zrow_scenes::board_angle`). `sysclk_hz` converts the cycle counts of the log (DWT's
 /// cycle counter, which the board enables) to frames per second. A frame the renderer refuses
 /// (a capacity error) is logged and not sent: the panel keeps its last frame.
 pub fn run<R, L, DC>(renderer: &mut R, rows: &mut Rows<L, DC>, scenes: &[Show], sysclk_hz: u32) -> !
@@ -148,7 +148,7 @@ where
                 cortex_m::asm::wfi();
             }
         };
-        let (name, angle) = (show.name, frame as f32 * 0.03);
+        let (name, angle) = (show.name, zrow_scenes::board_angle(frame));
         rows.wait_cycles = 0;
         let t0 = DWT::cycle_count();
         let mut result = None;
