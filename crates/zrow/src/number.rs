@@ -264,6 +264,21 @@ fn udiv_u128(n: u128, d: u128) -> u128 {
     q
 }
 
+/// `v · 2^-shift` as an `f32` built from its bits (exact: 16 significant bits fit 24), in
+/// integer instructions, for cores without an FPU.
+#[inline]
+fn f32_from_compact_bits(v: i16, shift: u32) -> f32 {
+    if v == 0 {
+        return 0.0;
+    }
+    let m = v.unsigned_abs() as u32;
+    let top = 31 - m.leading_zeros(); // 0..=15
+                                      // shift ≤ 126: the exponent stays at least 1 (normal).
+    let exp = 127 + top - shift.min(126);
+    let sign = if v < 0 { 1 << 31 } else { 0 };
+    f32::from_bits(sign | exp << 23 | ((m << (23 - top)) & 0x7f_ffff))
+}
+
 fn sat_i32(v: i128) -> i32 {
     v.clamp(i32::MIN as i128, i32::MAX as i128) as i32
 }
@@ -745,7 +760,12 @@ impl Scalar for f32 {
     }
     #[inline]
     fn from_compact(v: i16, shift: u32) -> Self {
-        v as f32 * f32::from_bits((127 - shift.min(126)) << 23)
+        if cfg!(all(target_arch = "arm", not(target_abi = "eabihf"))) {
+            // No FPU (a Cortex-M3, say): conversion and multiply would be library calls.
+            f32_from_compact_bits(v, shift)
+        } else {
+            v as f32 * f32::from_bits((127 - shift.min(126)) << 23)
+        }
     }
     fn from_scaled(v: i64, frac: u32) -> Option<Self> {
         // 2^-frac is a normal f32 for frac ≤ 126: the scaling is exact.
@@ -935,6 +955,21 @@ impl Scalar for f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The integer construction of a compact f32 position against the FPU's, every input.
+    #[test]
+    fn f32_compact_bits_equal_the_conversion() {
+        for v in i16::MIN..=i16::MAX {
+            for shift in [0, 1, 8, 14, 16, 30, 100, 126, 127, 200] {
+                let want = v as f32 * f32::from_bits((127 - shift.min(126)) << 23);
+                assert_eq!(
+                    f32_from_compact_bits(v, shift).to_bits(),
+                    want.to_bits(),
+                    "{v} {shift}"
+                );
+            }
+        }
+    }
 
     /// The compact 128-bit division against the library's, on wide operands (a fixed
     /// xorshift sequence) and on the edges.
