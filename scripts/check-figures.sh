@@ -7,7 +7,7 @@
 #
 # Checked: both firmwares' flash and static RAM, the bytes per frame on the wire and the board
 # in the loop's frame rates and stack peaks ("On the board"), the converted torus's scan-line RAM
-# and the converted icosphere's flash ("Bring your own model"), the emulated cube counts of cull-only and the
+# and the converted icosphere's flash, plain and compact ("Bring your own model"), the emulated cube counts of cull-only and the
 # scan-line method ("Methods"), and the scan-line RAM column of the methods table against
 # docs/methods/foley.md (which its own command writes).
 set -euo pipefail
@@ -98,6 +98,11 @@ ico="$(cargo run --release -q -p zrow-sim -- convert --model assets/models/icosp
 read -r ico_flash ico_faces <<<"$ico"
 ico_listed=$((ico_flash - ico_faces + 12 * $(grep -c '^    \[' "$tmp/icosphere.rs")))
 expect "converted icosphere flash" "the icosphere: $(thousands "$ico_flash") bytes of flash where its faces would take $(thousands "$ico_listed")"
+# The same with compact positions.
+ico_compact="$(cargo run --release -q -p zrow-sim -- convert --model assets/models/icosphere.stl \
+  --out "$tmp/icosphere-compact.rs" --size 240x240 --distance 3 --compact 2>&1 |
+  sed -nE 's/.*flash \(32-bit target\): ([0-9]+) bytes = .*/\1/p')"
+expect "converted icosphere flash, compact" "the icosphere: $(thousands "$ico_compact") bytes of flash instead of $(thousands "$ico_flash")"
 
 # The emulated cube: cull-only against the scan-line method (Q16.16, M instructions).
 bench=emu/target/bench-m4.txt

@@ -16,11 +16,11 @@
 //!
 //! ```text
 //! zrow-sim convert --model FILE --out FILE.rs [--format q16.16|f32] [--size WxH]
-//!                  [--distance D] [--name NAME] [--checks N] [--strict]
+//!                  [--distance D] [--name NAME] [--checks N] [--strict] [--compact]
 //! ```
 //!
-//! Flags may come in any order, as `--flag value` or `--flag=value` (`--strict` takes no
-//! value). `--screen` (`--model`) and
+//! Flags may come in any order, as `--flag value` or `--flag=value` (`--strict` and
+//! `--compact` take no value). `--screen` (`--model`) and
 //! `--out` are required; `--size` defaults to 240x240 (the ST7789 panel), `--algo` to `scanline` and
 //! `--format` to `q16.16`. A flag given twice, an unknown flag or a bad value is a usage error.
 
@@ -58,7 +58,7 @@ usage:
   --distance D    camera distance from the origin, 0 < D < 20 (default 3)
 
   zrow-sim convert --model FILE --out FILE.rs [--format FMT] [--size WxH] [--distance D]
-                   [--name NAME] [--checks N] [--strict]
+                   [--name NAME] [--checks N] [--strict] [--compact]
                   writes the model as const Rust data for flash (normalised positions in the
                   format, per-face normals, u8 or u16 indices, Rgb565 colours) with the
                   scan-line capacities measured over all orientations at that size and
@@ -67,6 +67,8 @@ usage:
   --checks N      random extra orientations that check the sampled capacities (default 10000,
                   at most 1000000)
   --strict        refuse to split or triangulate faces, and non-manifold models: an error
+  --compact       positions as 16-bit integers at 2^-14 (zrow::Positions::Compact): 6 bytes
+                  a vertex instead of 12, each coordinate within 2^-15 of the model's
 
 Input files must be regular files of at most 256 MiB (a device, FIFO or directory is refused
 before it is read). --out is checked before any work and replaced only once fully written.
@@ -177,6 +179,7 @@ const CONVERT_FLAGS: &[&str] = &[
     "--name",
     "--checks",
     "--strict",
+    "--compact",
 ];
 
 /// `a, b or c`.
@@ -216,6 +219,7 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
     let mut view = View::default();
     let mut angles: Vec<&str> = Vec::new();
     let mut strict = false;
+    let mut compact = false;
     let mut name_flag = None;
     let mut checks = None;
     while let Some(arg) = args.next() {
@@ -237,12 +241,17 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
                 or_list(allowed)
             )));
         };
-        if flag == "--strict" {
+        if matches!(flag, "--strict" | "--compact") {
             if value.is_some() {
-                return Err(usage("--strict takes no value"));
+                return Err(usage(format!("{flag} takes no value")));
             }
-            if std::mem::replace(&mut strict, true) {
-                return Err(usage("--strict given twice"));
+            let set = if flag == "--strict" {
+                &mut strict
+            } else {
+                &mut compact
+            };
+            if std::mem::replace(set, true) {
+                return Err(usage(format!("{flag} given twice")));
             }
             continue;
         }
@@ -377,6 +386,7 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
             height,
             distance: view.distance,
             strict,
+            compact,
             name: name_flag.unwrap_or(if stem.is_empty() {
                 defaults.name.clone()
             } else {
@@ -598,6 +608,7 @@ mod tests {
             "--strict",
             "--format",
             "f32",
+            "--compact",
             "--distance",
             "4",
         ];
@@ -608,8 +619,8 @@ mod tests {
         assert_eq!(got.out, PathBuf::from("m.rs"));
         let o = &got.options;
         assert_eq!(
-            (o.name.as_str(), o.strict, o.format),
-            ("my_model", true, Format::F32)
+            (o.name.as_str(), o.strict, o.compact, o.format),
+            ("my_model", true, true, Format::F32)
         );
         assert_eq!(
             (o.width, o.height, o.distance, o.check_views),
@@ -622,8 +633,12 @@ mod tests {
             panic!()
         };
         assert_eq!(
-            (got.options.name.as_str(), got.options.strict),
-            ("ico", false)
+            (
+                got.options.name.as_str(),
+                got.options.strict,
+                got.options.compact
+            ),
+            ("ico", false, false)
         );
         for (args, want) in [
             (&["convert", "--out", "a.rs"][..], "convert needs --model"),
@@ -632,6 +647,15 @@ mod tests {
                 &["convert", "--strict", "--strict"][..],
                 "--strict given twice",
             ),
+            (
+                &["convert", "--compact", "--compact"][..],
+                "--compact given twice",
+            ),
+            (
+                &["convert", "--compact=yes"][..],
+                "--compact takes no value",
+            ),
+            (&["render", "--compact"][..], "unknown argument `--compact`"),
             (&["convert", "--checks", "many"][..], "bad --checks `many`"),
             (&["convert", "--yaw", "3"][..], "unknown argument `--yaw`"),
         ] {

@@ -39,3 +39,9 @@ pub mod cube {
 pub mod icosphere {
     zrow::include_mesh!("icosphere");
 }
+
+/// `assets/models/icosphere.stl` converted with compact positions (`--compact`: 16-bit
+/// integers at 2^-14, [`zrow::Positions::Compact`], 6 bytes a vertex instead of 12).
+pub mod icosphere_compact {
+    zrow::include_mesh!("icosphere_compact");
+}

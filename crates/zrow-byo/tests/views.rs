@@ -2,13 +2,14 @@
 //! use): the renderer sized by the converter never runs out of room, and draws what a
 //! generously sized one draws; the cube, a closed convex solid, is drawn exactly by culling
 //! alone at the converter's capacities; the icosphere, emitted as a triangle list, draws what
-//! the same triangles as a list of faces draw.
+//! the same triangles as a list of faces draw; converted with compact positions, it draws
+//! what the same positions in Q16.16 draw, within 2^-15 of the Q16.16 conversion's.
 
 use zrow::Rgb565;
 use zrow::{
     Affine, Config, FrameBuffer, Mesh, MeshIndex, ModelScene, Object, Renderer, Scanline, Q16_16,
 };
-use zrow_byo::{cube, icosphere, torus};
+use zrow_byo::{cube, icosphere, icosphere_compact, torus};
 use zrow_model::camera::{light, View};
 use zrow_model::convert::random_rotations;
 
@@ -93,5 +94,41 @@ fn a_model_of_triangles_is_emitted_as_a_triangle_list() {
         let got = draw(&mut *small, &icosphere::MESH, &rot).expect("capacities hold");
         assert!(got.iter().any(|&p| p != Rgb565::new(0, 0, 0)));
         assert!(got == draw(&mut *big, &listed, &rot).unwrap());
+    }
+}
+
+#[test]
+fn compact_positions_draw_what_their_values_draw() {
+    let compact = &icosphere_compact::MESH;
+    assert!(matches!(
+        compact.vertices,
+        zrow::Positions::Compact { shift: 14, .. }
+    ));
+    // Half the vertices' flash, and every coordinate within 2^-15 (plus the Q16.16
+    // conversion's own 2^-17) of the Q16.16 conversion's.
+    assert_eq!(
+        core::mem::size_of_val(&icosphere_compact::VERTICES),
+        icosphere_compact::VERTICES.len() * 6
+    );
+    assert_eq!(compact.vertices.len(), icosphere::VERTICES.len());
+    for (c, q) in compact.vertices.iter().zip(icosphere::VERTICES.iter()) {
+        for (a, b) in [(c.x, q.x), (c.y, q.y), (c.z, q.z)] {
+            let d = (a.to_bits() - b.to_bits()).abs();
+            assert!(d <= 3, "{a} against {b}");
+        }
+    }
+    // The same values as a Q16.16 position table draw the same frames, and the compact
+    // conversion's own capacities hold.
+    let values: Vec<zrow::Vec3<Q16_16>> = compact.vertices.iter().collect();
+    let faces: Vec<zrow::Face<'_, _>> = compact.faces.iter().collect();
+    let plain = Mesh::with_normals(&values, &faces, &icosphere_compact::NORMALS);
+    let (mut small, mut big) = (
+        Box::new(icosphere_compact::Renderer::new()),
+        Box::new(Big::new()),
+    );
+    for rot in random_rotations(100, 0xc0_3ac7) {
+        let got = draw(&mut *small, compact, &rot).expect("capacities hold");
+        assert!(got.iter().any(|&p| p != Rgb565::new(0, 0, 0)));
+        assert!(got == draw(&mut *big, &plain, &rot).unwrap());
     }
 }

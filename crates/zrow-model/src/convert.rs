@@ -3,7 +3,7 @@
 //!
 //! ```text
 //! zrow-sim convert --model FILE --out FILE.rs [--format q16.16|f32] [--size WxH]
-//!                  [--distance D] [--name NAME] [--strict]
+//!                  [--distance D] [--name NAME] [--strict] [--compact]
 //! ```
 //!
 //! or, from a build script, [`write_for_build`] (then `zrow::include_mesh!("NAME")`). The
@@ -35,7 +35,11 @@
 //! per coordinate, `√3/2` LSB as a distance), f32 copies them exactly (error 0; the loader's own
 //! rounding to `f32`, at most 2⁻²⁵ relative, is not counted). Normals are one per face,
 //! Newell's normal in `f64` from the unquantised positions, unit length, then rounded to the
-//! format (a degenerate face gets the zero vector). Colours are Rgb565. Faces index vertices
+//! format (a degenerate face gets the zero vector). With `--compact`
+//! ([`ConvertOptions::compact`]) positions are rounded to nearest at 2^-14 instead and emitted
+//! as 16-bit integers (`zrow::Positions::Compact`, [`COMPACT_SHIFT`]): 6 bytes a vertex
+//! instead of 12, each coordinate within 2^-15 of the loader's (a unit-sphere model on a
+//! 240-pixel screen: about a 40,000th of its width), exact in both formats. Colours are Rgb565. Faces index vertices
 //! with the narrowest type: `u8` up to 256 vertices, else `u16` (more than 65,536: an error).
 //!
 //! **Requirements under every orientation.** The capacities of [`zrow::Scanline`] depend on the
@@ -111,6 +115,9 @@ pub struct ConvertOptions {
     /// Refuse every change (fan split, triangulation) and a non-manifold model: an error
     /// naming the face's line instead of a report line.
     pub strict: bool,
+    /// Positions as compact 16-bit integers at 2^-[`COMPACT_SHIFT`]
+    /// (`zrow::Positions::Compact`): half the vertices' flash, positions rounded to 2^-14.
+    pub compact: bool,
     /// The model's name (`NAME` in the emitted file, `NAME.rs` for [`write_for_build`]): ASCII
     /// letters, digits, `_` and `-`.
     pub name: String,
@@ -139,6 +146,7 @@ impl Default for ConvertOptions {
             height: 240,
             distance: View::default().distance,
             strict: false,
+            compact: false,
             name: "model".into(),
             directions: 256,
             rolls: 8,
@@ -245,7 +253,7 @@ pub struct DepthRange {
 /// Flash bytes of the emitted data on a 32-bit target (4-byte pointers and lengths).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct FlashBytes {
-    /// `VERTICES`: 12 bytes each.
+    /// `VERTICES`: 12 bytes each, 6 compact.
     pub vertices: usize,
     /// `NORMALS`: 12 bytes each.
     pub normals: usize,
@@ -273,6 +281,8 @@ pub struct Report {
     pub file: String,
     /// Number format name.
     pub format: &'static str,
+    /// Positions emitted compact ([`ConvertOptions::compact`]).
+    pub compact: bool,
     /// Frame size.
     pub size: (u16, u16),
     /// Camera distance.
@@ -319,8 +329,16 @@ impl fmt::Display for Report {
         writeln!(f, "zrow-sim convert {}", self.file)?;
         writeln!(
             f,
-            "  {} vertices ({} indices), {} faces, {}",
-            self.vertices, self.index, self.faces, self.format
+            "  {} vertices ({} indices), {} faces, {}{}",
+            self.vertices,
+            self.index,
+            self.faces,
+            self.format,
+            if self.compact {
+                ", positions compact (16-bit at 2^-14)"
+            } else {
+                ""
+            }
         )?;
         let [cx, cy, cz] = self.centre;
         writeln!(
@@ -351,7 +369,12 @@ impl fmt::Display for Report {
             f,
             "  normal error: max {:.3e} per coordinate ({:.3} LSB)",
             self.normal_error,
-            self.normal_error / e.lsb
+            self.normal_error
+                / if self.format == Format::F32.name() {
+                    lsb(Format::F32)
+                } else {
+                    lsb(Format::Q16_16)
+                }
         )?;
         let v = &self.views;
         writeln!(
@@ -586,6 +609,17 @@ fn planarity(points: &[P3]) -> f64 {
     }
 }
 
+/// Compact positions ([`ConvertOptions::compact`]) are integers at 2^-`COMPACT_SHIFT`: the unit
+/// sphere in ±16,384, with room to spare in 16 bits.
+pub const COMPACT_SHIFT: u8 = 14;
+
+/// Rounds a position to a compact integer's value at 2^-[`COMPACT_SHIFT`] (exact in both
+/// formats), returned as `f64`.
+fn quantise_compact(x: f64) -> f64 {
+    let unit = f64::from(1u32 << COMPACT_SHIFT);
+    (x * unit).round() / unit
+}
+
 /// Rounds to the format; returns the value as `f64` (exact).
 fn quantise(format: Format, x: f64) -> f64 {
     match format {
@@ -736,11 +770,17 @@ pub fn convert_model_with(
     manifold(file, &faces, opts.strict, &mut notes)?;
 
     // 5. Quantisation.
-    let vertices: Vec<P3> = exact
-        .iter()
-        .map(|p| p.map(|c| quantise(opts.format, c)))
-        .collect();
-    let position_error = quant_error(&exact, &vertices, lsb(opts.format));
+    let (vertices, position_lsb): (Vec<P3>, f64) = if opts.compact {
+        let v = exact.iter().map(|p| p.map(quantise_compact)).collect();
+        (v, 1.0 / f64::from(1u32 << COMPACT_SHIFT))
+    } else {
+        let v = exact
+            .iter()
+            .map(|p| p.map(|c| quantise(opts.format, c)))
+            .collect();
+        (v, lsb(opts.format))
+    };
+    let position_error = quant_error(&exact, &vertices, position_lsb);
     let mut degenerate = (0usize, None);
     let mut normals = Vec::with_capacity(faces.len());
     let mut normal_error = 0.0f64;
@@ -804,7 +844,7 @@ pub fn convert_model_with(
         Format::F32 => zrow::scanline::ram_bytes::<f32>(&capacities),
     };
     let flash = FlashBytes {
-        vertices: 12 * vertices.len(),
+        vertices: if opts.compact { 6 } else { 12 } * vertices.len(),
         normals: 12 * normals.len(),
         faces: if triangles_only(&faces) {
             2 * triangle_colors(&faces).len()
@@ -817,6 +857,7 @@ pub fn convert_model_with(
     let report = Report {
         file: file.to_owned(),
         format: opts.format.name(),
+        compact: opts.compact,
         size: (opts.width, opts.height),
         distance: opts.distance,
         vertices: vertices.len(),
@@ -1439,15 +1480,31 @@ fn emit(c: &Converted, name: &str) -> String {
         let _ = writeln!(s, "// {line}");
     }
     let (v, f) = (c.vertices.len(), c.faces.len());
-    let _ = writeln!(
-        s,
-        "\n/// The model's name.\npub const NAME: &str = {name:?};\n\n\
-         /// Vertex positions, normalised into the unit sphere ({what}).\n\
-         pub static VERTICES: [zrow::Vec3<{n_type}>; {v}] = ["
-    );
-    for p in &c.vertices {
-        let _ = writeln!(s, "    {},", vec3_literal(c.format, p));
+    if c.report.compact {
+        let _ = writeln!(
+            s,
+            "\n/// The model's name.\npub const NAME: &str = {name:?};\n\n\
+             /// Vertex positions, normalised into the unit sphere, as 16-bit integers at \
+             2^-{COMPACT_SHIFT}\n/// (`zrow::Positions::Compact`).\n\
+             pub static VERTICES: [[i16; 3]; {v}] = ["
+        );
+        let unit = f64::from(1u32 << COMPACT_SHIFT);
+        for p in &c.vertices {
+            let [x, y, z] = p.map(|c| (c * unit) as i16);
+            let _ = writeln!(s, "    [{x}, {y}, {z}],");
+        }
+    } else {
+        let _ = writeln!(
+            s,
+            "\n/// The model's name.\npub const NAME: &str = {name:?};\n\n\
+             /// Vertex positions, normalised into the unit sphere ({what}).\n\
+             pub static VERTICES: [zrow::Vec3<{n_type}>; {v}] = ["
+        );
+        for p in &c.vertices {
+            let _ = writeln!(s, "    {},", vec3_literal(c.format, p));
+        }
     }
+    let positions = if c.report.compact { "&[]" } else { "&VERTICES" };
     let _ = writeln!(
         s,
         "];\n\n/// One unit normal per face, model space (Newell's, computed in f64 from the \
@@ -1480,7 +1537,7 @@ fn emit(c: &Converted, name: &str) -> String {
         for color in &colors {
             let _ = writeln!(s, "    {},", rgb(color));
         }
-        "zrow::Mesh::triangles_with_normals(&VERTICES, &TRIANGLES, &COLORS, &NORMALS)"
+        format!("zrow::Mesh::triangles_with_normals({positions}, &TRIANGLES, &COLORS, &NORMALS)")
     } else {
         let _ = writeln!(
             s,
@@ -1495,7 +1552,14 @@ fn emit(c: &Converted, name: &str) -> String {
                 rgb(&face.color)
             );
         }
-        "zrow::Mesh::with_normals(&VERTICES, &FACES, &NORMALS)"
+        format!("zrow::Mesh::with_normals({positions}, &FACES, &NORMALS)")
+    };
+    let mesh = if c.report.compact {
+        format!(
+            "{mesh}\n        .with_positions(zrow::Positions::Compact {{ raw: &VERTICES, shift: {COMPACT_SHIFT} }})"
+        )
+    } else {
+        mesh
     };
     let cap = &c.capacities;
     let _ = writeln!(
@@ -1583,6 +1647,50 @@ mod tests {
             })
             .unwrap();
         assert!(clipped > 0, "no view made vertices by clipping");
+    }
+
+    /// `compact`: positions on the 2^-14 grid within half a step of the plain conversion's
+    /// exact ones, 6 bytes a vertex, the same capacities (sampling only) and the same faces.
+    #[test]
+    fn compact_positions_halve_the_vertices_flash() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/models/torus.off");
+        let model = crate::model::load(std::path::Path::new(path)).unwrap();
+        let quick = ConvertOptions {
+            directions: 16,
+            rolls: 2,
+            refine_starts: 1,
+            refine_steps: 4,
+            check_views: 0,
+            ..ConvertOptions::default()
+        };
+        let plain = convert_model(&model, &quick).unwrap();
+        let compact = convert_model(
+            &model,
+            &ConvertOptions {
+                compact: true,
+                ..quick.clone()
+            },
+        )
+        .unwrap();
+        let step = 1.0 / f64::from(1u32 << COMPACT_SHIFT);
+        assert_eq!(plain.vertices.len(), compact.vertices.len());
+        for (p, c) in plain.vertices.iter().zip(&compact.vertices) {
+            for (a, b) in p.iter().zip(c) {
+                assert_eq!((b / step).fract(), 0.0, "{b} is on the grid");
+                assert!((a - b).abs() <= step / 2.0 + 1.0 / 131_072.0, "{a} as {b}");
+            }
+        }
+        assert_eq!(
+            compact.report.flash.vertices * 2,
+            plain.report.flash.vertices
+        );
+        assert_eq!(compact.faces.len(), plain.faces.len());
+        assert!(compact.report.position_error.max_coordinate <= step / 2.0);
+        assert!(compact.rust.contains("pub static VERTICES: [[i16; 3]; "));
+        assert!(compact
+            .rust
+            .contains("zrow::Positions::Compact { raw: &VERTICES, shift: 14 }"));
+        assert!(!plain.rust.contains("Positions::Compact"));
     }
 
     #[test]
