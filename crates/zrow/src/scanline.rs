@@ -1451,10 +1451,14 @@ fn test_pixels<N: Scalar, const FAR: bool>(
     let (depth, owner) = (&mut depth[..n], &mut owner[..n]);
     let (mut wrote, mut most) = (false, N::ZERO);
     let mut z = depth_at(a, x0 as i32);
+    // f32 evaluates each pixel, `z_row + dzdx·x` with x counted in f32 (exact below 2^24,
+    // so the same bits as `depth_at` without an integer conversion a pixel).
+    let mut xf = N::from_f32(x0 as f32).unwrap_or(N::ZERO);
     for i in 0..n {
         // Exact formats step (the same bits); f32 evaluates each pixel.
         if !N::EXACT_STEPS {
-            z = depth_at(a, (x0 + i) as i32);
+            z = a.z_row.add(dzdx.mul(xf));
+            xf = xf.add(N::ONE);
         }
         let mut d = depth[i];
         if z < d || (z == d && poly < raw(owner[i])) {
@@ -1544,8 +1548,11 @@ fn fill_depth<N: Scalar>(depth: &mut [N], a: &Active<N>, x0: i32) {
             z = z.step(a.plane.dzdx, 1);
         }
     } else {
-        for (x, d) in (x0..).zip(depth) {
-            *d = depth_at(a, x);
+        // x counted in f32, exact below 2^24: the bits of `depth_at` (see `test_pixels`).
+        let mut xf = N::from_f32(x0 as f32).unwrap_or(N::ZERO);
+        for d in depth {
+            *d = a.z_row.add(a.plane.dzdx.mul(xf));
+            xf = xf.add(N::ONE);
         }
     }
 }
