@@ -99,7 +99,7 @@ impl MeshGen {
         self.emit_faces(out, name);
     }
 
-    /// Positions as compact 16-bit integers at 2^-`SHIFT` (`zrow::Positions::Compact`, 6
+    /// Vectors as compact 16-bit integers at 2^-`SHIFT` (`zrow::Vectors::Compact`, 6
     /// bytes a vertex in every format), rounded to nearest, then the faces.
     fn emit_compact(&self, out: &mut String, name: &str) {
         let n = self.vertices.len();

@@ -67,7 +67,7 @@ usage:
   --checks N      random extra orientations that check the sampled capacities (default 10000,
                   at most 1000000)
   --strict        refuse to split or triangulate faces, and non-manifold models: an error
-  --compact       positions as 16-bit integers at 2^-14 (zrow::Positions::Compact): 6 bytes
+  --compact       positions as 16-bit integers at 2^-14 (zrow::Vectors::Compact): 6 bytes
                   a vertex instead of 12, each coordinate within 2^-15 of the model's
 
 Input files must be regular files of at most 256 MiB (a device, FIFO or directory is refused

@@ -102,16 +102,31 @@ fn compact_positions_draw_what_their_values_draw() {
     let compact = &icosphere_compact::MESH;
     assert!(matches!(
         compact.vertices,
-        zrow::Positions::Compact { shift: 14, .. }
+        zrow::Vectors::Compact { shift: 14, .. }
     ));
-    // Half the vertices' flash, and every coordinate within 2^-15 (plus the Q16.16
-    // conversion's own 2^-17) of the Q16.16 conversion's.
+    // Half the vertices' and the normals' flash, and every coordinate within 2^-15 (plus
+    // the Q16.16 conversion's own 2^-17) of the Q16.16 conversion's.
     assert_eq!(
         core::mem::size_of_val(&icosphere_compact::VERTICES),
         icosphere_compact::VERTICES.len() * 6
     );
+    assert_eq!(
+        core::mem::size_of_val(&icosphere_compact::NORMALS),
+        icosphere_compact::NORMALS.len() * 6
+    );
     assert_eq!(compact.vertices.len(), icosphere::VERTICES.len());
-    for (c, q) in compact.vertices.iter().zip(icosphere::VERTICES.iter()) {
+    assert_eq!(compact.normals.len(), icosphere::NORMALS.len());
+    let pairs = compact
+        .vertices
+        .iter()
+        .zip(icosphere::VERTICES.iter().copied())
+        .chain(
+            compact
+                .normals
+                .iter()
+                .zip(icosphere::NORMALS.iter().copied()),
+        );
+    for (c, q) in pairs {
         for (a, b) in [(c.x, q.x), (c.y, q.y), (c.z, q.z)] {
             let d = (a.to_bits() - b.to_bits()).abs();
             assert!(d <= 3, "{a} against {b}");
@@ -120,8 +135,9 @@ fn compact_positions_draw_what_their_values_draw() {
     // The same values as a Q16.16 position table draw the same frames, and the compact
     // conversion's own capacities hold.
     let values: Vec<zrow::Vec3<Q16_16>> = compact.vertices.iter().collect();
+    let normals: Vec<zrow::Vec3<Q16_16>> = compact.normals.iter().collect();
     let faces: Vec<zrow::Face<'_, _>> = compact.faces.iter().collect();
-    let plain = Mesh::with_normals(&values, &faces, &icosphere_compact::NORMALS);
+    let plain = Mesh::with_normals(&values, &faces, &normals);
     let (mut small, mut big) = (
         Box::new(icosphere_compact::Renderer::new()),
         Box::new(Big::new()),

@@ -37,7 +37,7 @@
 //! Newell's normal in `f64` from the unquantised positions, unit length, then rounded to the
 //! format (a degenerate face gets the zero vector). With `--compact`
 //! ([`ConvertOptions::compact`]) positions are rounded to nearest at 2^-14 instead and emitted
-//! as 16-bit integers (`zrow::Positions::Compact`, [`COMPACT_SHIFT`]): 6 bytes a vertex
+//! as 16-bit integers (`zrow::Vectors::Compact`, [`COMPACT_SHIFT`]): 6 bytes a vertex
 //! instead of 12, each coordinate within 2^-15 of the loader's (a unit-sphere model on a
 //! 240-pixel screen: about a 40,000th of its width), exact in both formats. Colours are Rgb565. Faces index vertices
 //! with the narrowest type: `u8` up to 256 vertices, else `u16` (more than 65,536: an error).
@@ -116,7 +116,7 @@ pub struct ConvertOptions {
     /// naming the face's line instead of a report line.
     pub strict: bool,
     /// Positions as compact 16-bit integers at 2^-[`COMPACT_SHIFT`]
-    /// (`zrow::Positions::Compact`): half the vertices' flash, positions rounded to 2^-14.
+    /// (`zrow::Vectors::Compact`): half the vertices' flash, positions rounded to 2^-14.
     pub compact: bool,
     /// The model's name (`NAME` in the emitted file, `NAME.rs` for [`write_for_build`]): ASCII
     /// letters, digits, `_` and `-`.
@@ -262,7 +262,7 @@ pub struct FlashBytes {
     pub faces: usize,
     /// The index arrays the faces point to.
     pub indices: usize,
-    /// `MESH`: three slices, 24 bytes.
+    /// `MESH`: a `zrow::Mesh` on a 32-bit target, [`MESH_BYTES`].
     pub mesh: usize,
 }
 
@@ -609,6 +609,10 @@ fn planarity(points: &[P3]) -> f64 {
     }
 }
 
+/// Bytes of a `zrow::Mesh` on a 32-bit target (its positions, faces and normals: three
+/// two-variant enums over slices), checked at compile time by `zrow-byo` when built for one.
+pub const MESH_BYTES: usize = 40;
+
 /// Compact positions ([`ConvertOptions::compact`]) are integers at 2^-`COMPACT_SHIFT`: the unit
 /// sphere in ±16,384, with room to spare in 16 bits.
 pub const COMPACT_SHIFT: u8 = 14;
@@ -794,7 +798,11 @@ pub fn convert_model_with(
             degenerate.0 += 1;
         }
         let n = n.unwrap_or([0.0; 3]);
-        let q = n.map(|c| quantise(opts.format, c));
+        let q = if opts.compact {
+            n.map(quantise_compact)
+        } else {
+            n.map(|c| quantise(opts.format, c))
+        };
         for (a, b) in n.iter().zip(&q) {
             normal_error = normal_error.max((a - b).abs());
         }
@@ -845,14 +853,14 @@ pub fn convert_model_with(
     };
     let flash = FlashBytes {
         vertices: if opts.compact { 6 } else { 12 } * vertices.len(),
-        normals: 12 * normals.len(),
+        normals: if opts.compact { 6 } else { 12 } * normals.len(),
         faces: if triangles_only(&faces) {
             2 * triangle_colors(&faces).len()
         } else {
             12 * faces.len()
         },
         indices: faces.iter().map(|f| f.indices.len()).sum::<usize>() * index.bytes(),
-        mesh: 24,
+        mesh: MESH_BYTES,
     };
     let report = Report {
         file: file.to_owned(),
@@ -1485,7 +1493,7 @@ fn emit(c: &Converted, name: &str) -> String {
             s,
             "\n/// The model's name.\npub const NAME: &str = {name:?};\n\n\
              /// Vertex positions, normalised into the unit sphere, as 16-bit integers at \
-             2^-{COMPACT_SHIFT}\n/// (`zrow::Positions::Compact`).\n\
+             2^-{COMPACT_SHIFT}\n/// (`zrow::Vectors::Compact`).\n\
              pub static VERTICES: [[i16; 3]; {v}] = ["
         );
         let unit = f64::from(1u32 << COMPACT_SHIFT);
@@ -1504,14 +1512,32 @@ fn emit(c: &Converted, name: &str) -> String {
             let _ = writeln!(s, "    {},", vec3_literal(c.format, p));
         }
     }
-    let positions = if c.report.compact { "&[]" } else { "&VERTICES" };
-    let _ = writeln!(
-        s,
-        "];\n\n/// One unit normal per face, model space (Newell's, computed in f64 from the \
-         unquantised positions; {what}).\npub static NORMALS: [zrow::Vec3<{n_type}>; {f}] = ["
-    );
-    for p in &c.normals {
-        let _ = writeln!(s, "    {},", vec3_literal(c.format, p));
+    let (positions, normals) = if c.report.compact {
+        ("&[]", "&[]")
+    } else {
+        ("&VERTICES", "&NORMALS")
+    };
+    if c.report.compact {
+        let _ = writeln!(
+            s,
+            "];\n\n/// One unit normal per face, model space (Newell's, computed in f64 from the \
+             unquantised positions), as 16-bit integers at 2^-{COMPACT_SHIFT}.\n\
+             pub static NORMALS: [[i16; 3]; {f}] = ["
+        );
+        let unit = f64::from(1u32 << COMPACT_SHIFT);
+        for p in &c.normals {
+            let [x, y, z] = p.map(|c| (c * unit) as i16);
+            let _ = writeln!(s, "    [{x}, {y}, {z}],");
+        }
+    } else {
+        let _ = writeln!(
+            s,
+            "];\n\n/// One unit normal per face, model space (Newell's, computed in f64 from the \
+             unquantised positions; {what}).\npub static NORMALS: [zrow::Vec3<{n_type}>; {f}] = ["
+        );
+        for p in &c.normals {
+            let _ = writeln!(s, "    {},", vec3_literal(c.format, p));
+        }
     }
     let rgb = |c: &zrow::Rgb565| format!("zrow::Rgb565::new({}, {}, {})", c.r(), c.g(), c.b());
     let mesh = if triangles_only(&c.faces) {
@@ -1537,7 +1563,7 @@ fn emit(c: &Converted, name: &str) -> String {
         for color in &colors {
             let _ = writeln!(s, "    {},", rgb(color));
         }
-        format!("zrow::Mesh::triangles_with_normals({positions}, &TRIANGLES, &COLORS, &NORMALS)")
+        format!("zrow::Mesh::triangles_with_normals({positions}, &TRIANGLES, &COLORS, {normals})")
     } else {
         let _ = writeln!(
             s,
@@ -1552,11 +1578,11 @@ fn emit(c: &Converted, name: &str) -> String {
                 rgb(&face.color)
             );
         }
-        format!("zrow::Mesh::with_normals({positions}, &FACES, &NORMALS)")
+        format!("zrow::Mesh::with_normals({positions}, &FACES, {normals})")
     };
     let mesh = if c.report.compact {
         format!(
-            "{mesh}\n        .with_positions(zrow::Positions::Compact {{ raw: &VERTICES, shift: {COMPACT_SHIFT} }})"
+            "{mesh}\n        .with_positions(zrow::Vectors::Compact {{ raw: &VERTICES, shift: {COMPACT_SHIFT} }})\n        .with_normal_vectors(zrow::Vectors::Compact {{ raw: &NORMALS, shift: {COMPACT_SHIFT} }})"
         )
     } else {
         mesh
@@ -1689,8 +1715,8 @@ mod tests {
         assert!(compact.rust.contains("pub static VERTICES: [[i16; 3]; "));
         assert!(compact
             .rust
-            .contains("zrow::Positions::Compact { raw: &VERTICES, shift: 14 }"));
-        assert!(!plain.rust.contains("Positions::Compact"));
+            .contains("zrow::Vectors::Compact { raw: &VERTICES, shift: 14 }"));
+        assert!(!plain.rust.contains("Vectors::Compact"));
     }
 
     #[test]

@@ -47,8 +47,8 @@ use embedded_graphics_core::pixelcolor::Rgb565;
 use zrow::presets::Preset;
 use zrow::shading::{DepthCue, Interpolation};
 use zrow::{
-    Affine, Camera, Config, Face, Light, MathLib, Mesh, ModelScene, Object, Positions, Scalar,
-    Scene, ScreenScene, Vec3, Q16_16, Q24_8,
+    Affine, Camera, Config, Face, Light, MathLib, Mesh, ModelScene, Object, Scalar, Scene,
+    ScreenScene, Vec3, Vectors, Q16_16, Q24_8,
 };
 
 mod meshes {
@@ -118,14 +118,14 @@ pub const DEMO_REQUIREMENTS: zrow::Requirements = DEMO_MEASURED.with_margin(5);
 pub const SIZE: u16 = 240;
 
 /// The model meshes' (cube, torus, ring) positions are compact 16-bit integers at
-/// 2^-`MODEL_SHIFT` (`zrow::Positions::Compact`): one table for every number format, 6 bytes a
+/// 2^-`MODEL_SHIFT` (`zrow::Vectors::Compact`): one table for every number format, 6 bytes a
 /// vertex, exact in every format (a multiple of 2^-14 is one of Q16.16 and of f32; Q24.8
 /// rounds it to its 2^-8).
 pub const MODEL_SHIFT: u8 = 14;
 
 /// Compact positions at [`MODEL_SHIFT`].
-const fn compact<N>(raw: &'static [[i16; 3]]) -> Positions<'static, N> {
-    Positions::Compact {
+const fn compact<N>(raw: &'static [[i16; 3]]) -> Vectors<'static, N> {
+    Vectors::Compact {
         raw,
         shift: MODEL_SHIFT,
     }

@@ -119,8 +119,8 @@ pub use raster::{Config, Cull};
 pub use requirements::{requirements, requirements_with, Requirements};
 pub use scanline::Scanline;
 pub use scene::{
-    Camera, Face, Faces, FacesIter, Light, Mesh, MeshIndex, ModelScene, Object, Positions,
-    PositionsIter, Projection, Scene, ScreenScene,
+    Camera, Face, Faces, FacesIter, Light, Mesh, MeshIndex, ModelScene, Object, Projection, Scene,
+    ScreenScene, Vectors, VectorsIter,
 };
 pub use sink::{DrawTargetSink, Drawing, FrameBuffer, Row, RowSink};
 pub use zbuffer::ZBuffer;

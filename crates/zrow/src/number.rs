@@ -101,7 +101,7 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     /// it does not fit: how values computed in integers (the sines of [`sin_cos_q31`]) reach
     /// the format.
     fn from_scaled(v: i64, frac: u32) -> Option<Self>;
-    /// `v · 2^-shift` for a compact 16-bit position ([`crate::Positions::Compact`]), in
+    /// `v · 2^-shift` for a compact 16-bit position ([`crate::Vectors::Compact`]), in
     /// 32-bit arithmetic: exact when the format has `shift` or more fractional bits, else
     /// rounded to nearest (a tie up). Always fits: a 16-bit integer is below 2^15.
     fn from_compact(v: i16, shift: u32) -> Self;

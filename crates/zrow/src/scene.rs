@@ -255,24 +255,26 @@ impl<'a, I: Copy> Iterator for FacesIter<'a, I> {
 
 impl<I: Copy> ExactSizeIterator for FacesIter<'_, I> {}
 
-/// A mesh's vertex positions: in the number format, or compact (16-bit integers and one
-/// power-of-two scale, half the flash of a 32-bit format).
+/// A mesh's 3-vectors — its vertex positions ([`Mesh::vertices`]) and its face normals
+/// ([`Mesh::normals`]): in the number format, or compact (16-bit integers and one
+/// power-of-two scale, half the flash of a 32-bit format; a unit normal at 2^-14 is within
+/// 2^-15 of its direction).
 ///
 /// ```
-/// use zrow::{Positions, Q16_16, Scalar};
+/// use zrow::{Vectors, Q16_16, Scalar};
 /// // (0.5, -1.25, 2.0) at 2^-14: 6 bytes a vertex.
 /// static RAW: [[i16; 3]; 1] = [[8192, -20480, 32767]];
-/// let p: Positions<'_, Q16_16> = Positions::Compact { raw: &RAW, shift: 14 };
+/// let p: Vectors<'_, Q16_16> = Vectors::Compact { raw: &RAW, shift: 14 };
 /// let v = p.get(0).unwrap();
 /// assert_eq!((v.x.to_f32(), v.y.to_f32()), (0.5, -1.25));
 /// assert_eq!(v.z.to_bits(), 32767 << 2); // exact: 2^-14 is a multiple of 2^-16
 /// assert_eq!(p.len(), 1);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Positions<'a, N> {
-    /// Positions in the number format: 12 bytes a vertex in every format.
+pub enum Vectors<'a, N> {
+    /// In the number format: 12 bytes a vector in every format.
     Format(&'a [Vec3<N>]),
-    /// Each coordinate is `raw · 2^-shift` (6 bytes a vertex): exact in f32, in Q16.16 for
+    /// Each coordinate is `raw · 2^-shift` (6 bytes a vector): exact in f32, in Q16.16 for
     /// `shift ≤ 16` and in Q24.8 for `shift ≤ 8`, rounded to nearest otherwise. With shift
     /// 14 a model spans ±2 units in steps of 2^-14.
     Compact {
@@ -283,63 +285,66 @@ pub enum Positions<'a, N> {
     },
 }
 
-impl<N: Scalar> Positions<'_, N> {
-    /// How many vertices.
+impl<N> Vectors<'_, N> {
+    /// How many vectors.
     #[inline]
     pub const fn len(&self) -> usize {
         match self {
-            Positions::Format(v) => v.len(),
-            Positions::Compact { raw, .. } => raw.len(),
+            Vectors::Format(v) => v.len(),
+            Vectors::Compact { raw, .. } => raw.len(),
         }
     }
     /// Whether there are none.
     pub const fn is_empty(&self) -> bool {
         self.len() == 0
     }
-    /// Vertex `i` in the number format, or `None` past the end.
+}
+
+impl<N: Scalar> Vectors<'_, N> {
+    /// Vector `i` in the number format, or `None` past the end.
     #[inline]
     pub fn get(&self, i: usize) -> Option<Vec3<N>> {
         match self {
-            Positions::Format(v) => v.get(i).copied(),
-            Positions::Compact { raw, shift } => raw.get(i).map(|r| compact(r, *shift)),
+            Vectors::Format(v) => v.get(i).copied(),
+            Vectors::Compact { raw, shift } => raw.get(i).map(|r| compact(r, *shift)),
         }
     }
-    /// Every vertex in order, in the number format.
-    pub fn iter(&self) -> PositionsIter<'_, N> {
+    /// Every vector in order, in the number format.
+    pub fn iter(&self) -> VectorsIter<'_, N> {
         match self {
-            Positions::Format(v) => PositionsIter::Format(v.iter()),
-            Positions::Compact { raw, shift } => PositionsIter::Compact(raw.iter(), *shift),
+            Vectors::Format(v) => VectorsIter::Format(v.iter()),
+            Vectors::Compact { raw, shift } => VectorsIter::Compact(raw.iter(), *shift),
         }
     }
 }
 
-/// The iterator of [`Positions::iter`].
+/// The iterator of [`Vectors::iter`].
 #[derive(Clone, Debug)]
-pub enum PositionsIter<'a, N> {
+pub enum VectorsIter<'a, N> {
     /// Over positions in the number format.
     Format(core::slice::Iter<'a, Vec3<N>>),
     /// Over compact positions and their shift.
     Compact(core::slice::Iter<'a, [i16; 3]>, u8),
 }
 
-impl<N: Scalar> Iterator for PositionsIter<'_, N> {
+impl<N: Scalar> Iterator for VectorsIter<'_, N> {
     type Item = Vec3<N>;
     #[inline]
     fn next(&mut self) -> Option<Vec3<N>> {
         match self {
-            PositionsIter::Format(v) => v.next().copied(),
-            PositionsIter::Compact(raw, shift) => raw.next().map(|r| compact(r, *shift)),
+            VectorsIter::Format(v) => v.next().copied(),
+            VectorsIter::Compact(raw, shift) => raw.next().map(|r| compact(r, *shift)),
         }
     }
     fn size_hint(&self) -> (usize, Option<usize>) {
         match self {
-            PositionsIter::Format(v) => v.size_hint(),
-            PositionsIter::Compact(raw, _) => raw.size_hint(),
+            VectorsIter::Format(v) => v.size_hint(),
+            VectorsIter::Compact(raw, _) => raw.size_hint(),
         }
     }
 }
 
-impl<N: Scalar> ExactSizeIterator for PositionsIter<'_, N> {}
+impl<N: Scalar> ExactSizeIterator for VectorsIter<'_, N> {}
 
 /// A compact position in the number format ([`Scalar::from_compact`]: always fits).
 #[inline]
@@ -353,7 +358,7 @@ fn compact<N: Scalar>(r: &[i16; 3], shift: u8) -> Vec3<N> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Mesh<'a, N, I = u16> {
     /// Vertex positions.
-    pub vertices: Positions<'a, N>,
+    pub vertices: Vectors<'a, N>,
     /// Faces: a list of [`Face`]s, or triangles of one colour ([`Faces`]).
     pub faces: Faces<'a, I>,
     /// Precomputed face normals, or empty. Empty: model mode computes each face's normal per
@@ -362,16 +367,16 @@ pub struct Mesh<'a, N, I = u16> {
     /// marks a degenerate face, which is skipped); model mode transforms it to view space
     /// and uses it for back-face culling and lighting instead of the cross product.
     /// Screen-space mode ignores it. Any other length is [`Error::Normals`].
-    pub normals: &'a [Vec3<N>],
+    pub normals: Vectors<'a, N>,
 }
 
 impl<'a, N, I> Mesh<'a, N, I> {
     /// A mesh whose normals model mode computes per frame.
     pub const fn new(vertices: &'a [Vec3<N>], faces: &'a [Face<'a, I>]) -> Self {
         Mesh {
-            vertices: Positions::Format(vertices),
+            vertices: Vectors::Format(vertices),
             faces: Faces::List(faces),
-            normals: &[],
+            normals: Vectors::Format(&[]),
         }
     }
     /// A mesh of opaque triangles ([`Faces::Triangles`]: 6 bytes a triangle with `u16`
@@ -383,9 +388,9 @@ impl<'a, N, I> Mesh<'a, N, I> {
         colors: &'a [Rgb565],
     ) -> Self {
         Mesh {
-            vertices: Positions::Format(vertices),
+            vertices: Vectors::Format(vertices),
             faces: Faces::Triangles { indices, colors },
-            normals: &[],
+            normals: Vectors::Format(&[]),
         }
     }
     /// [`Mesh::triangles`] with one precomputed model-space unit normal per triangle (see
@@ -397,9 +402,9 @@ impl<'a, N, I> Mesh<'a, N, I> {
         normals: &'a [Vec3<N>],
     ) -> Self {
         Mesh {
-            vertices: Positions::Format(vertices),
+            vertices: Vectors::Format(vertices),
             faces: Faces::Triangles { indices, colors },
-            normals,
+            normals: Vectors::Format(normals),
         }
     }
     /// A mesh with one precomputed model-space unit normal per face (see [`Mesh::normals`]).
@@ -409,14 +414,19 @@ impl<'a, N, I> Mesh<'a, N, I> {
         normals: &'a [Vec3<N>],
     ) -> Self {
         Mesh {
-            vertices: Positions::Format(vertices),
+            vertices: Vectors::Format(vertices),
             faces: Faces::List(faces),
-            normals,
+            normals: Vectors::Format(normals),
         }
     }
     /// The same mesh with its positions from `vertices` (compact ones, say).
-    pub const fn with_positions(self, vertices: Positions<'a, N>) -> Self {
+    pub const fn with_positions(self, vertices: Vectors<'a, N>) -> Self {
         Mesh { vertices, ..self }
+    }
+    /// The same mesh with its face normals from `normals` (compact ones, say; see
+    /// [`Mesh::normals`]).
+    pub const fn with_normal_vectors(self, normals: Vectors<'a, N>) -> Self {
+        Mesh { normals, ..self }
     }
     /// Checks that `normals` is empty or has one entry per face, and that triangles have one
     /// colour each or one for all.

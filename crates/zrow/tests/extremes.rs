@@ -879,9 +879,9 @@ fn bad_input<N: Scalar>() {
     // Bad configuration.
     let scene = ScreenScene {
         mesh: Mesh {
-            vertices: zrow::Positions::Format(&v),
+            vertices: zrow::Vectors::Format(&v),
             faces: zrow::Faces::List(&[tri]),
-            normals: &[],
+            normals: zrow::Vectors::Format(&[]),
         },
     };
     let mut r = Box::new(Scanline::<N, 16, 12, 4, 2>::new());
