@@ -1451,14 +1451,18 @@ fn test_pixels<N: Scalar, const FAR: bool>(
     let (depth, owner) = (&mut depth[..n], &mut owner[..n]);
     let (mut wrote, mut most) = (false, N::ZERO);
     let mut z = depth_at(a, x0 as i32);
-    // f32 evaluates each pixel, `z_row + dzdx·x` with x counted in f32 (exact below 2^24,
-    // so the same bits as `depth_at` without an integer conversion a pixel).
+    // f32 evaluates each pixel, `z_row + dzdx·x`; with an FPU x is counted in f32 (exact
+    // below 2^24, so the same bits as `depth_at` without an integer conversion a pixel).
     let mut xf = N::from_f32(x0 as f32).unwrap_or(N::ZERO);
     for i in 0..n {
         // Exact formats step (the same bits); f32 evaluates each pixel.
         if !N::EXACT_STEPS {
-            z = a.z_row.add(dzdx.mul(xf));
-            xf = xf.add(N::ONE);
+            if FPU {
+                z = a.z_row.add(dzdx.mul(xf));
+                xf = xf.add(N::ONE);
+            } else {
+                z = depth_at(a, (x0 + i) as i32);
+            }
         }
         let mut d = depth[i];
         if z < d || (z == d && poly < raw(owner[i])) {
@@ -1547,15 +1551,24 @@ fn fill_depth<N: Scalar>(depth: &mut [N], a: &Active<N>, x0: i32) {
             *d = z;
             z = z.step(a.plane.dzdx, 1);
         }
-    } else {
+    } else if FPU {
         // x counted in f32, exact below 2^24: the bits of `depth_at` (see `test_pixels`).
         let mut xf = N::from_f32(x0 as f32).unwrap_or(N::ZERO);
         for d in depth {
             *d = a.z_row.add(a.plane.dzdx.mul(xf));
             xf = xf.add(N::ONE);
         }
+    } else {
+        for (x, d) in (x0..).zip(depth) {
+            *d = depth_at(a, x);
+        }
     }
 }
+
+/// Whether `f32` arithmetic is in hardware: without an FPU (a Cortex-M3 or M0) an `f32` add
+/// is a library call dearer than converting an integer, so x is converted a pixel instead
+/// of counted in `f32` (the same bits either way).
+const FPU: bool = !cfg!(all(target_arch = "arm", not(target_abi = "eabihf")));
 
 /// What computing a depth plane on demand needs: the vertex buffer, the polygon table, the
 /// sub-pixel bits, the current row.
