@@ -1468,13 +1468,40 @@ fn triangle_colors(faces: &[ConvertedFace]) -> Vec<zrow::Rgb565> {
     }
 }
 
+/// `pub static NAME` holding `values` with the doc comment `doc`, up to its closing `];`
+/// (written by what follows): 16-bit integers at 2^-[`COMPACT_SHIFT`] for a compact
+/// conversion, else the format's `zrow::Vec3` literals.
+fn emit_vectors(s: &mut String, doc: &str, name: &str, values: &[[f64; 3]], c: &Converted) {
+    let n = values.len();
+    if c.report.compact {
+        let _ = writeln!(
+            s,
+            "{doc}, as 16-bit integers at 2^-{COMPACT_SHIFT}\n/// (`zrow::Vectors::Compact`).\n\
+             pub static {name}: [[i16; 3]; {n}] = ["
+        );
+        let unit = f64::from(1u32 << COMPACT_SHIFT);
+        for p in values {
+            let [x, y, z] = p.map(|c| (c * unit) as i16);
+            let _ = writeln!(s, "    [{x}, {y}, {z}],");
+        }
+    } else {
+        let (n_type, what) = match c.format {
+            Format::Q16_16 => ("zrow::Q16_16", "16.16 fixed point, rounded to nearest"),
+            Format::F32 => ("f32", "f32"),
+        };
+        let _ = writeln!(
+            s,
+            "{doc} ({what}).\npub static {name}: [zrow::Vec3<{n_type}>; {n}] = ["
+        );
+        for p in values {
+            let _ = writeln!(s, "    {},", vec3_literal(c.format, p));
+        }
+    }
+}
+
 fn emit(c: &Converted, name: &str) -> String {
     let n_type = match c.format {
         Format::Q16_16 => "zrow::Q16_16",
-        Format::F32 => "f32",
-    };
-    let what = match c.format {
-        Format::Q16_16 => "16.16 fixed point, rounded to nearest",
         Format::F32 => "f32",
     };
     let i_type = c.index.name();
@@ -1487,58 +1514,32 @@ fn emit(c: &Converted, name: &str) -> String {
     for line in r.to_string().lines() {
         let _ = writeln!(s, "// {line}");
     }
-    let (v, f) = (c.vertices.len(), c.faces.len());
-    if c.report.compact {
-        let _ = writeln!(
-            s,
-            "\n/// The model's name.\npub const NAME: &str = {name:?};\n\n\
-             /// Vertex positions, normalised into the unit sphere, as 16-bit integers at \
-             2^-{COMPACT_SHIFT}\n/// (`zrow::Vectors::Compact`).\n\
-             pub static VERTICES: [[i16; 3]; {v}] = ["
-        );
-        let unit = f64::from(1u32 << COMPACT_SHIFT);
-        for p in &c.vertices {
-            let [x, y, z] = p.map(|c| (c * unit) as i16);
-            let _ = writeln!(s, "    [{x}, {y}, {z}],");
-        }
-    } else {
-        let _ = writeln!(
-            s,
-            "\n/// The model's name.\npub const NAME: &str = {name:?};\n\n\
-             /// Vertex positions, normalised into the unit sphere ({what}).\n\
-             pub static VERTICES: [zrow::Vec3<{n_type}>; {v}] = ["
-        );
-        for p in &c.vertices {
-            let _ = writeln!(s, "    {},", vec3_literal(c.format, p));
-        }
-    }
+    let f = c.faces.len();
+    let _ = writeln!(
+        s,
+        "\n/// The model's name.\npub const NAME: &str = {name:?};\n"
+    );
+    emit_vectors(
+        &mut s,
+        "/// Vertex positions, normalised into the unit sphere",
+        "VERTICES",
+        &c.vertices,
+        c,
+    );
     let (positions, normals) = if c.report.compact {
         ("&[]", "&[]")
     } else {
         ("&VERTICES", "&NORMALS")
     };
-    if c.report.compact {
-        let _ = writeln!(
-            s,
-            "];\n\n/// One unit normal per face, model space (Newell's, computed in f64 from the \
-             unquantised positions), as 16-bit integers at 2^-{COMPACT_SHIFT}.\n\
-             pub static NORMALS: [[i16; 3]; {f}] = ["
-        );
-        let unit = f64::from(1u32 << COMPACT_SHIFT);
-        for p in &c.normals {
-            let [x, y, z] = p.map(|c| (c * unit) as i16);
-            let _ = writeln!(s, "    [{x}, {y}, {z}],");
-        }
-    } else {
-        let _ = writeln!(
-            s,
-            "];\n\n/// One unit normal per face, model space (Newell's, computed in f64 from the \
-             unquantised positions; {what}).\npub static NORMALS: [zrow::Vec3<{n_type}>; {f}] = ["
-        );
-        for p in &c.normals {
-            let _ = writeln!(s, "    {},", vec3_literal(c.format, p));
-        }
-    }
+    let _ = writeln!(s, "];\n");
+    emit_vectors(
+        &mut s,
+        "/// One unit normal per face, model space: Newell's, computed in f64 from the \
+         unquantised positions",
+        "NORMALS",
+        &c.normals,
+        c,
+    );
     let rgb = |c: &zrow::Rgb565| format!("zrow::Rgb565::new({}, {}, {})", c.r(), c.g(), c.b());
     let mesh = if triangles_only(&c.faces) {
         let _ = writeln!(
