@@ -247,7 +247,8 @@ fn div_round(n: i128, d: i128) -> i128 {
 #[inline(never)]
 #[cold]
 fn udiv_u128(n: u128, d: u128) -> u128 {
-    if n < d {
+    // (A zero divisor never comes here; answered with 0 rather than a panic.)
+    if n < d || d == 0 {
         return 0;
     }
     let shift = d.leading_zeros() - n.leading_zeros();
@@ -481,7 +482,7 @@ macro_rules! impl_fixed {
             fn from_scaled(v: i64, frac: u32) -> Option<Self> {
                 let f = $t::FRAC_NBITS;
                 let raw = if frac > f {
-                    ((v >> (frac - f - 1).min(63)) + 1) >> 1
+                    (v >> (frac - f - 1).min(63)).checked_add(1)? >> 1
                 } else {
                     v.checked_mul(1 << (f - frac))?
                 };
@@ -1007,6 +1008,7 @@ mod tests {
         ] {
             assert_eq!(udiv_u128(n, d), n / d);
         }
+        assert_eq!(udiv_u128(u128::MAX, 0), 0);
     }
 
     /// The same unit tests for every fixed-point format: `$t` and its fractional bits `$f`
@@ -1048,6 +1050,7 @@ mod tests {
                     assert_eq!(s(i64::MAX, 62), Some(2 << $f));
                     assert_eq!(s(1 << 31, 0), None);
                     assert_eq!(s(i64::MAX, 0), None);
+                    assert_eq!(s(i64::MAX, $f + 1), None);
                     // Compact positions: the same values as from_scaled, every shift.
                     for shift in 0..=40u32 {
                         for v in [0i16, 1, -1, 3, -3, 255, -256, 12345, i16::MAX, i16::MIN] {
