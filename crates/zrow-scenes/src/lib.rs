@@ -223,7 +223,8 @@ pub const LIGHT: ([f32; 3], f32) = ([0.4, 1.0, 0.7], 0.2);
 /// `MODEL_TURN.1`.
 pub const MODEL_TURN: (f32, f32) = (0.35, 0.2);
 
-/// The model scenes' camera (tangent by libm, correctly rounded to f32's precision).
+/// The model scenes' camera (`MathLib::Libm`: tangent by libm in f32, from exact integer
+/// sines in fixed point).
 pub fn camera<N: Scalar>() -> Option<Camera<N>> {
     camera_with(MathLib::Libm)
 }
@@ -295,7 +296,7 @@ pub fn with_scene_math<N: Format, R>(
     model(mesh, angle, math, f)
 }
 
-/// [`with_scene`] for the demo scenes ([`DEMOS`]) alone, with libm's trig: a program that
+/// [`with_scene`] for the demo scenes ([`DEMOS`]) alone, with `MathLib::Libm`: a program that
 /// shows only these (the board's demo) links only their meshes, not the comparison scenes'
 /// (which [`with_scene`]'s lookup by name keeps in flash). `None` for another name.
 pub fn with_demo<N: Format, R>(

@@ -172,9 +172,9 @@ impl<N: Scalar> Affine<N> {
         }
         Some(out)
     }
-    /// Rotation about the y axis then the x axis (angles in radians) and a translation,
-    /// computed in `f32` with libm's sines and cosines and converted
-    /// ([`Affine::rotate_yx_translate_with`] picks the maths).
+    /// Rotation about the y axis then the x axis (angles in radians) and a translation:
+    /// in f32 with libm's sines and cosines, in fixed point with exact integer ones
+    /// ([`MathLib::Libm`]; [`Affine::rotate_yx_translate_with`] picks the maths).
     pub fn rotate_yx_translate(yaw: f32, pitch: f32, t: [f32; 3]) -> Option<Self> {
         Self::rotate_yx_translate_with(MathLib::Libm, yaw, pitch, t)
     }

@@ -541,7 +541,8 @@ impl<N: Scalar> Camera<N> {
 }
 
 impl<N: Scalar> Projection<N> {
-    /// A perspective projection from a vertical field of view in radians (tangent by libm;
+    /// A perspective projection from a vertical field of view in radians (tangent by libm in
+    /// f32, from exact integer sines in fixed point, see [`crate::math::MathLib::Libm`];
     /// [`Projection::perspective_with`] takes micromath's, cheaper and about 1 % off). `None`
     /// if a value does not fit the number format.
     ///
