@@ -225,7 +225,9 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
 ///
 /// Divides in 64 bits when both fit (the common case; two hardware divisions when `d` fits 32
 /// bits, see `div`): on a 32-bit core a 128-bit division is a much longer library call. Same
-/// result either way.
+/// result either way. Out of line: only the cold 128-bit paths call it, three times each
+/// (one copy instead of three in flash).
+#[inline(never)]
 fn div_round(n: i128, d: i128) -> i128 {
     if let (Ok(n), Ok(d)) = (i64::try_from(n), i64::try_from(d)) {
         if n > i64::MIN / 2 && n < i64::MAX / 2 {
