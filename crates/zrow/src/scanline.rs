@@ -1202,18 +1202,12 @@ impl<
                     } else {
                         test_pixels::<N, false>(a, b0, d, o)
                     };
-                    if let Some(far) = took {
-                        // The block's farthest depth now, if below its bound: from the pass
-                        // itself when the span covers the block, else over the whole block
-                        // (pixels outside the span keep theirs).
-                        let now = if whole {
-                            far
-                        } else {
-                            let block = &depth[b << shift..((b + 1) << shift).min(w)];
-                            block[1..].iter().fold(block[0], max)
-                        };
-                        if now < hiz[b] {
-                            hiz[b] = now;
+                    if let Some(far) = took.filter(|_| whole) {
+                        // The block's farthest depth now, from the pass itself (the span
+                        // covers the block), if below its bound. A span covering part of the
+                        // block leaves the bound as it is: still a bound (depths only fall).
+                        if far < hiz[b] {
+                            hiz[b] = far;
                         }
                     }
                 }
