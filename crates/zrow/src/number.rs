@@ -225,8 +225,8 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
 ///
 /// Divides in 64 bits when both fit (the common case; two hardware divisions when `d` fits 32
 /// bits, see `div`): on a 32-bit core a 128-bit division is a much longer library call. Same
-/// result either way. Out of line: only the cold 128-bit paths call it, three times each
-/// (one copy instead of three in flash).
+/// result either way. Out of line: only cold paths call it (the 128-bit depth plane three times,
+/// fixed-point clipping's interpolation once), so flash holds one copy instead of four.
 #[inline(never)]
 fn div_round(n: i128, d: i128) -> i128 {
     if let (Ok(n), Ok(d)) = (i64::try_from(n), i64::try_from(d)) {
