@@ -53,12 +53,13 @@ py="$venv/bin/python"
 (cd "$root" && cargo build --release -q -p zrow-st7789 --example replay)
 replay="$root/target/release/examples/replay"
 
-# Boots the release ELF of the firmware in directory $1 (built into target directory $3) and
-# checks its frames; the replay's table on stdout. Status 3: it does not build.
-check() { # dir name target-dir
-  local dir="$1" name="$2" target="$3"
+# Boots the release ELF of the firmware in directory $1 (package $4, built into target
+# directory $3) and checks its frames; the replay's table on stdout. Status 3: it does not
+# build.
+check() { # dir name target-dir package
+  local dir="$1" name="$2" target="$3" package="$4"
   (cd "$dir" && CARGO_TARGET_DIR="$target" cargo build --release -q) || return 3
-  local elf="$target/thumbv7em-none-eabihf/release/zrow-firmware"
+  local elf="$target/thumbv7em-none-eabihf/release/$package"
   "$py" "$here/f411.py" "$elf" "$out/$name.stream" --frames-per-scene "$per_scene" \
     --frames "$frames" || return 1
   "$replay" "$out/$name.stream"
@@ -71,7 +72,7 @@ echo "== the peripheral model refuses what it does not model"
 echo "== the shipped firmware: $frames frames, $per_scene per demo scene"
 # Its table is kept for scripts/check-figures.sh (the README quotes it).
 # Its own target directory: the ELF `cargo run --release` flashes.
-check "$root/firmware" shipped "$root/firmware/target" | tee "$out/shipped.txt"
+check "$root/firmware" shipped "$root/firmware/target" zrow-firmware | tee "$out/shipped.txt"
 
 echo "== the Blue Pill (STM32F103C8): its shipped firmware, $((2 * per_scene)) frames of its two scenes"
 bluepill="$root/firmware/bluepill"
@@ -116,6 +117,12 @@ text = re.sub(r"^([\w-]+)\.workspace = true$", lambda m: f"{m[1]} = {values[m[1]
 open(path, "w").write(text)
 PY
   sed -i "s#\"\\.\\./memory.x\"#\"$root/memory.x\"#g" "$copy/build.rs"
+  # Built in the shipped firmware's target directory, whose dependencies (the HAL, the
+  # renderer: minutes of compiling from cold) it shares, under another package name so that
+  # the shipped ELF is not overwritten.
+  sed -i 's/^name = "zrow-firmware"$/name = "zrow-firmware-mutant"/' "$copy/Cargo.toml"
+  grep -q '^name = "zrow-firmware-mutant"$' "$copy/Cargo.toml" ||
+    { echo "error: the mutant's package rename does not apply" >&2; exit 1; }
   "$py" - "$copy/$file" "$edit" <<'PY'
 import sys
 path, edit = sys.argv[1], sys.argv[2]
@@ -127,8 +134,9 @@ open(path, "w").write(text.replace(old, new, 1))
 PY
   echo "== mutant $name: the check must fail"
   local rc=0
-  # The copies share one target directory; each is fresh, so each build relinks its ELF.
-  check "$copy" "mutant-$name" "$out/target" >"$out/mutant-$name.log" 2>&1 || rc=$?
+  # Each copy is fresh, so each build relinks its ELF.
+  check "$copy" "mutant-$name" "$root/firmware/target" zrow-firmware-mutant \
+    >"$out/mutant-$name.log" 2>&1 || rc=$?
   if [ "$rc" = 0 ]; then
     echo "error: mutant $name passed the check" >&2
     fail=1
@@ -157,11 +165,15 @@ sed -i "s#path = \"\\.\\./\\.\\./#path = \"$root/#g; s#path = \"\\.\\./demo\"#pa
   "$copy/Cargo.toml"
 sed -i 's/DEMO_MEASURED_EACH\[0\].with_margin(5)/DEMO_MEASURED_EACH[0].with_margin(30)/' "$copy/src/main.rs"
 grep -q 'with_margin(30)' "$copy/src/main.rs" || { echo "error: the mutation does not apply" >&2; exit 1; }
-if ! (cd "$copy" && CARGO_TARGET_DIR="$out/target-bluepill" cargo build --release -q) \
+# In the shipped Blue Pill firmware's target directory under another name, as above.
+sed -i 's/^name = "zrow-bluepill"$/name = "zrow-bluepill-mutant"/' "$copy/Cargo.toml"
+grep -q '^name = "zrow-bluepill-mutant"$' "$copy/Cargo.toml" ||
+  { echo "error: the mutant's package rename does not apply" >&2; exit 1; }
+if ! (cd "$copy" && CARGO_TARGET_DIR="$bluepill/target" cargo build --release -q) \
   >"$out/mutant-bluepill-stack.log" 2>&1; then
   echo "error: mutant bluepill-stack does not build (see $out/mutant-bluepill-stack.log)" >&2
   fail=1
-elif "$py" "$here/f103.py" "$out/target-bluepill/thumbv7m-none-eabi/release/zrow-bluepill" \
+elif "$py" "$here/f103.py" "$bluepill/target/thumbv7m-none-eabi/release/zrow-bluepill-mutant" \
   "$out/mutant-bluepill-stack.stream" --frames-per-scene 1 --frames 2 --scenes interlocked,cube \
   >>"$out/mutant-bluepill-stack.log" 2>&1; then
   echo "error: mutant bluepill-stack passed the check" >&2
