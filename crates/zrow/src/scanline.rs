@@ -1197,18 +1197,18 @@ impl<
                 if near <= hiz[b] {
                     let whole = b0 == b << shift && b1 == ((b + 1) << shift).min(w);
                     let (d, o) = (&mut depth[b0..b1], &mut owner[b0..b1]);
-                    let took = if whole {
-                        test_pixels::<N, true>(a, b0, d, o)
-                    } else {
-                        test_pixels::<N, false>(a, b0, d, o)
-                    };
-                    if let Some(far) = took.filter(|_| whole) {
+                    if whole {
                         // The block's farthest depth now, from the pass itself (the span
-                        // covers the block), if below its bound. A span covering part of the
-                        // block leaves the bound as it is: still a bound (depths only fall).
-                        if far < hiz[b] {
-                            hiz[b] = far;
+                        // covers the block), if below its bound.
+                        if let Some(far) = test_pixels::<N, true>(a, b0, d, o) {
+                            if far < hiz[b] {
+                                hiz[b] = far;
+                            }
                         }
+                    } else {
+                        // A span covering part of the block leaves the bound as it is: still
+                        // a bound (depths only fall).
+                        test_pixels::<N, false>(a, b0, d, o);
                     }
                 }
                 z0 = z0.step(dzdx, len);
