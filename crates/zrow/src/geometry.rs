@@ -746,10 +746,11 @@ impl<N: Scalar> Lighting<N> {
 }
 
 impl<N: Scalar> Lighting<N> {
-    /// `max(0, n·l) / |n|`, the dot products summed exactly and rounded once.
+    /// `max(0, n·l) / |n|` ([`Scalar::affine_row_as`], plain: in fixed point the dot products
+    /// are summed exactly and rounded once; f32 sums plainly, far within an intensity step).
     #[inline]
     fn lambert(&self, n: [N; 3], l: [N; 3]) -> N {
-        let dot = |a: [N; 3], b: [N; 3]| N::affine_row(&[a[0], a[1], a[2], N::ZERO], b);
+        let dot = |a: [N; 3], b: [N; 3]| N::affine_row_as(&[a[0], a[1], a[2], N::ZERO], b, true);
         match dot(n, l) {
             Some(d) if d > N::ZERO => d.mul(self.math.rsqrt(dot(n, n).unwrap_or(N::MAX))),
             _ => N::ZERO,
@@ -799,7 +800,7 @@ fn emit_clipped<N: Scalar, I: MeshIndex>(
             index: i.index() as u32,
         })?;
         let v = mv
-            .apply_checked(p)
+            .apply_checked_with(cfg.math, p)
             .filter(|v| v.x.is_finite() && v.y.is_finite() && v.z.is_finite())
             .ok_or(Error::NonFinite { face: this })?;
         let _ = clip.push(proj.clip(v)); // fits: checked against MAX_FACE_VERTICES
@@ -860,7 +861,7 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
             let base = buf.claim(mesh.vertices.len());
             if let Some(b) = base {
                 for (slot, v) in buf.slots_from(b).iter_mut().zip(mesh.vertices.iter()) {
-                    let c = mv.apply_checked(v).map(|v| proj.clip(v));
+                    let c = mv.apply_checked_with(cfg.math, v).map(|v| proj.clip(v));
                     *slot = c
                         .filter(|c| proj.inside(c))
                         .and_then(|c| proj.screen(&c))

@@ -2,14 +2,15 @@
 
 use crate::number::Scalar;
 
-/// Which `f32` routines compute trigonometry (rotations, the field of view) and the square
-/// roots of lighting: the speed–accuracy knob of the presets.
+/// Which `f32` routines compute trigonometry (rotations, the field of view), the square
+/// roots of lighting and geometry's vertex transforms: the speed–accuracy knob of the presets.
 ///
 /// | routine | [`MathLib::Micromath`] (measured, tests/shading.rs) | [`MathLib::Libm`] |
 /// |---|---|---|
 /// | sin, cos | abs. error 1.09e-3 on ±2π | ≤ 1 ULP (musl; 3e-8 abs. measured) |
 /// | tan | rel. error 1.3 % on \|x\| ≤ 1.4 | ≤ 1 ULP |
 /// | sqrt | rel. error 6.1 % on 1e-6..1e6 | [`Scalar::sqrt`]: within 1 ULP |
+/// | f32 vertex transform ([`Affine::apply_checked_with`]) | summed plainly: ≤ 3 units of the last place of the largest term | compensated: ≤ 0.5 unit plus about 2^-44 of the largest term |
 ///
 /// Lighting uses reciprocal square roots: [`Scalar::rsqrt`] for [`MathLib::Libm`] (relative
 /// error below 2^-18 in fixed point, a few ULP in f32), micromath's `invsqrt` (3.4 %) for
@@ -225,7 +226,8 @@ impl<N: Scalar> Affine<N> {
     }
     /// Applies to a point. Each coordinate is summed exactly and rounded once
     /// ([`Scalar::affine_row`]: within half a unit of the last place in fixed point, however
-    /// large the partial sums); a coordinate beyond the format saturates, with the exact
+    /// large the partial sums; in f32 compensated, the same plus about 2^-44 of the largest
+    /// term); a coordinate beyond the format saturates, with the exact
     /// result's sign. [`Affine::apply_checked`] says so instead.
     pub fn apply(&self, p: Vec3<N>) -> Vec3<N> {
         let row = |r: &[N; 4]| N::affine_row_saturating(r, [p.x, p.y, p.z]);
@@ -235,6 +237,20 @@ impl<N: Scalar> Affine<N> {
     /// in f32, is not finite).
     pub fn apply_checked(&self, p: Vec3<N>) -> Option<Vec3<N>> {
         let row = |r: &[N; 4]| N::affine_row(r, [p.x, p.y, p.z]);
+        Some(Vec3::new(
+            row(&self.m[0])?,
+            row(&self.m[1])?,
+            row(&self.m[2])?,
+        ))
+    }
+    /// [`Affine::apply_checked`] as accurate as `math` asks: [`MathLib::Libm`] exactly so,
+    /// [`MathLib::Micromath`] with f32 rows summed plainly ([`Scalar::affine_row_as`]: within
+    /// 3 units of the last place of the largest term, at about a fifth of the cost). Fixed
+    /// point sums exactly either way. Geometry transforms vertices with it.
+    #[inline]
+    pub fn apply_checked_with(&self, math: MathLib, p: Vec3<N>) -> Option<Vec3<N>> {
+        let plain = math == MathLib::Micromath;
+        let row = |r: &[N; 4]| N::affine_row_as(r, [p.x, p.y, p.z], plain);
         Some(Vec3::new(
             row(&self.m[0])?,
             row(&self.m[1])?,

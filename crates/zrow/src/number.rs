@@ -26,6 +26,7 @@
 use crate::raster::RasterVertex;
 
 mod div;
+mod dot2;
 mod trig;
 
 pub use trig::{sin_cos_q31, TRIG_LIMIT};
@@ -147,12 +148,26 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     /// `row[0]·p[0] + row[1]·p[1] + row[2]·p[2] + row[3]`: one row of an affine transform.
     /// Fixed point: the products are summed exactly (64-bit and wider) and rounded once, to
     /// nearest, so the result is within half a unit of the last place whatever the partial
-    /// sums do. `None` if the result does not fit the format (or, in f32, is not finite).
+    /// sums do. f32: compensated (Ogita, Rump & Oishi's `Dot2`), as if summed in twice the
+    /// precision and rounded once: within half a unit of the last place plus about 2^-44 of
+    /// the largest term. `None` if the result does not fit the format (or, in f32, is not
+    /// finite).
     fn affine_row(row: &[Self; 4], p: [Self; 3]) -> Option<Self>;
     /// [`Scalar::affine_row`], or where the result does not fit, the format's end with the
     /// exact result's sign (±[`Scalar::MAX`]; zero for NaN input). Fixed point decides the
     /// sign in integers, so a fixed-point program links no floating point for it.
     fn affine_row_saturating(row: &[Self; 4], p: [Self; 3]) -> Self;
+    /// [`Scalar::affine_row`], or, when `plain`, summed plainly where a few units of the last
+    /// place do not matter (lighting, whose result is an 8-bit intensity; transforms under
+    /// [`crate::MathLib::Micromath`]). Fixed point ignores `plain` (exact, and as cheap); f32
+    /// then takes three products and three sums, each rounded (within 3 units of the last
+    /// place of the largest term, 1.96 measured near the format's limits, at about a fifth of
+    /// the compensated sum's cost).
+    #[inline]
+    fn affine_row_as(row: &[Self; 4], p: [Self; 3], plain: bool) -> Option<Self> {
+        let _ = plain;
+        Self::affine_row(row, p)
+    }
     /// The direction of the face normal `(b − a) × (c − a)`, scaled by a power of two (f32: by
     /// the reciprocal of its largest component) so that its largest component lies in
     /// [1/2, 1]: a direction with the format's full precision, for lighting, without a
@@ -812,6 +827,14 @@ impl Scalar for f32 {
         })
     }
     fn affine_row(row: &[Self; 4], p: [Self; 3]) -> Option<Self> {
+        let v = dot2::affine_row_f32(row, p);
+        v.is_finite().then_some(v)
+    }
+    #[inline]
+    fn affine_row_as(row: &[Self; 4], p: [Self; 3], plain: bool) -> Option<Self> {
+        if !plain {
+            return Self::affine_row(row, p);
+        }
         let v = row[0] * p[0] + row[1] * p[1] + row[2] * p[2] + row[3];
         v.is_finite().then_some(v)
     }

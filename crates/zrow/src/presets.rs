@@ -8,7 +8,7 @@
 //! | sub-pixel bits ([`Config::subpixel_bits`](crate::Config::subpixel_bits)) | 4 | 8 |
 //! | depth store ([`DepthStore`](crate::presets::DepthStore)) | 16-bit tiles ([`crate::tiled`]) | 32-bit row ([`crate::Scanline`]) |
 //! | depth mapping ([`DepthMapping`](crate::geometry::DepthMapping)) | linear in w | affine in 1/w |
-//! | trig and square roots ([`MathLib`](crate::math::MathLib)) | micromath | libm |
+//! | trig, square roots and f32 transforms ([`MathLib`](crate::math::MathLib)) | micromath, plain f32 sums | libm, compensated f32 sums |
 //! | intensity ([`Interpolation`](crate::shading::Interpolation)) | affine | perspective-correct |
 //!
 //! The format and the depth store are types (pick the renderer type the preset names); the
