@@ -236,12 +236,7 @@ impl<N: Scalar> Affine<N> {
     /// [`Affine::apply`], or `None` if a coordinate of the result does not fit the format (or,
     /// in f32, is not finite).
     pub fn apply_checked(&self, p: Vec3<N>) -> Option<Vec3<N>> {
-        let row = |r: &[N; 4]| N::affine_row(r, [p.x, p.y, p.z]);
-        Some(Vec3::new(
-            row(&self.m[0])?,
-            row(&self.m[1])?,
-            row(&self.m[2])?,
-        ))
+        self.apply_checked_with(MathLib::Libm, p)
     }
     /// [`Affine::apply_checked`] as accurate as `math` asks: [`MathLib::Libm`] exactly so,
     /// [`MathLib::Micromath`] with f32 rows summed plainly ([`Scalar::affine_row_as`]: within

@@ -835,7 +835,7 @@ impl Scalar for f32 {
         if !plain {
             return Self::affine_row(row, p);
         }
-        let v = row[0] * p[0] + row[1] * p[1] + row[2] * p[2] + row[3];
+        let v = dot2::plain_row_f32(row, p);
         v.is_finite().then_some(v)
     }
     fn affine_row_saturating(row: &[Self; 4], p: [Self; 3]) -> Self {

@@ -57,8 +57,14 @@ pub(crate) fn affine_row_f32(row: &[f32; 4], p: [f32; 3]) -> f32 {
         v
     } else {
         // The splitting overflowed (or the result is beyond the format): the plain sum.
-        row[0] * p[0] + row[1] * p[1] + row[2] * p[2] + row[3]
+        plain_row_f32(row, p)
     }
+}
+
+/// The same row summed plainly: three products and three sums, each rounded.
+#[inline]
+pub(crate) fn plain_row_f32(row: &[f32; 4], p: [f32; 3]) -> f32 {
+    row[0] * p[0] + row[1] * p[1] + row[2] * p[2] + row[3]
 }
 
 #[cfg(test)]
