@@ -758,11 +758,26 @@ impl_fixed!(Q24_8, "q24.8");
 
 /// Floor of a finite `f32` as `i64` (no `floor` in `core`).
 fn floor_f32(t: f32) -> i64 {
+    if t.abs() < 2_147_483_648.0 {
+        // Within an i32 (every caller's case): the same truncation and rounding as the i64
+        // conversions, one FPU instruction each where the 64-bit ones are library calls.
+        let i = t as i32;
+        return if (i as f32) > t { i as i64 - 1 } else { i as i64 };
+    }
     let i = t as i64;
     if (i as f32) > t {
         i - 1
     } else {
         i
+    }
+}
+
+/// `v` rounded to the nearest `f32`, as `v as f32` does, through the FPU's 32-bit conversion
+/// when `v` fits an `i32` (the 64-bit one is a library call).
+fn i64_to_f32(v: i64) -> f32 {
+    match i32::try_from(v) {
+        Ok(v) => v as f32,
+        Err(_) => v as f32,
     }
 }
 
@@ -958,7 +973,7 @@ impl Scalar for f32 {
         if area == 0 {
             return None;
         }
-        c += area as f32 * scale * scale;
+        c += i64_to_f32(area) * scale * scale;
         let i_ref = bx >> s;
         let j_ref = by >> s;
         let half = 0.5f32;
@@ -994,6 +1009,43 @@ mod tests {
                     "{v} {shift}"
                 );
             }
+        }
+    }
+
+    /// The 32-bit shortcuts of `floor_f32` and `i64_to_f32` give the 64-bit conversions'
+    /// results: around the i32 limits, the integers and halves, and a fixed xorshift sample.
+    #[test]
+    fn f32_conversions_through_i32_equal_the_64_bit_ones() {
+        let floor_ref = |t: f32| {
+            let i = t as i64;
+            if (i as f32) > t {
+                i - 1
+            } else {
+                i
+            }
+        };
+        let check = |t: f32| assert_eq!(floor_f32(t), floor_ref(t), "{t}");
+        for e in [0.0f32, 0.5, 1.0, 8_388_607.5, 8_388_608.0, 16_777_217.0, 2_147_483_520.0] {
+            for t in [e, -e, 2_147_483_648.0, -2_147_483_648.0, 3.0e9, -3.0e9, 1.0e-30] {
+                check(t);
+                check(f32::from_bits(t.to_bits() + 1));
+                check(-f32::from_bits(t.to_bits() + 1));
+            }
+        }
+        let mut s = 0x9e37_79b9_7f4a_7c15u64;
+        for _ in 0..100_000 {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            let t = f32::from_bits(s as u32);
+            if t.is_finite() && t.abs() < 1.0e12 {
+                check(t);
+            }
+            let v = (s as i64) >> (s >> 58);
+            assert_eq!(i64_to_f32(v).to_bits(), (v as f32).to_bits(), "{v}");
+        }
+        for v in [i32::MIN as i64, i32::MAX as i64, i32::MAX as i64 + 1, i32::MIN as i64 - 1] {
+            assert_eq!(i64_to_f32(v).to_bits(), (v as f32).to_bits(), "{v}");
         }
     }
 

@@ -1186,13 +1186,12 @@ impl<
                 let b = b0 >> shift;
                 let b1 = ((b + 1) << shift).min(x1);
                 let len = (b1 - b0) as i32;
-                if !N::EXACT_STEPS {
-                    z0 = depth_at(a, b0 as i32);
-                }
-                let near = if N::EXACT_STEPS || rising {
+                // Exact formats step from block to block; f32 evaluates the block's nearer
+                // end only (the same bits as evaluating both and choosing).
+                let near = if N::EXACT_STEPS {
                     near_of(z0, len)
                 } else {
-                    depth_at(a, b1 as i32 - 1)
+                    depth_at(a, if rising { b0 } else { b1 - 1 } as i32)
                 };
                 if near <= hiz[b] {
                     let whole = b0 == b << shift && b1 == ((b + 1) << shift).min(w);
@@ -1211,7 +1210,9 @@ impl<
                         test_pixels::<N, false>(a, b0, d, o);
                     }
                 }
-                z0 = z0.step(dzdx, len);
+                if N::EXACT_STEPS {
+                    z0 = z0.step(dzdx, len);
+                }
                 b0 = b1;
             }
         }
