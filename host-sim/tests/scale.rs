@@ -38,6 +38,7 @@ fn torus(nu: u32, nv: u32) -> LoadedModel {
                     indices,
                     color,
                     origin: None,
+                    normals: Vec::new(),
                 });
             }
         }
@@ -47,6 +48,7 @@ fn torus(nu: u32, nv: u32) -> LoadedModel {
         vertex_origins: vec![None; positions.len()],
         positions,
         faces,
+        normals: Vec::new(),
         centre: [0.0; 3],
         scale: 1.0,
         warnings: Vec::new(),

@@ -37,6 +37,7 @@ pub mod format;
 pub mod model;
 pub mod off;
 pub mod structure;
+pub mod vertex_normals;
 
 pub use error::Error;
 pub use format::Format;

@@ -6,6 +6,9 @@
 //!   (`Kd`) of its material when the MTL file its `mtllib` line names gives one, else
 //!   [`DEFAULT_RGB`]. A missing, unreadable or malformed MTL file is not an error: the faces
 //!   are drawn in the default colour and [`LoadedModel::warnings`] says which file and why.
+//!   Normals (`vn`) are kept per face corner when every corner has one (else a warning says
+//!   where one is missing): [`LoadedModel::vertex_normals`] then uses them for smooth shading
+//!   instead of computing them from the faces.
 //! - **STL**: every triangle in [`DEFAULT_RGB`]. Binary and ASCII are told apart by the size
 //!   the binary header promises, so a binary file whose header happens to start with `solid`
 //!   still loads.
@@ -35,6 +38,7 @@
 use crate::error::Error;
 use crate::off::shown;
 use crate::off::{self, rgb8_to_rgb565};
+use crate::vertex_normals::{self, VertexNormals};
 use core::fmt;
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -168,6 +172,9 @@ pub struct ModelFace {
     pub color: Rgb565,
     /// Where it came from, if known.
     pub origin: Option<Origin>,
+    /// The file's normal of each corner, as indices into [`LoadedModel::normals`] (an OBJ's
+    /// `vn`), or empty: the file gives none.
+    pub normals: Vec<u32>,
 }
 
 /// A model in memory, normalised into the unit sphere (see the module doc).
@@ -181,6 +188,10 @@ pub struct LoadedModel {
     pub vertex_origins: Vec<Option<Origin>>,
     /// Faces, in file order.
     pub faces: Vec<ModelFace>,
+    /// The normals the file gives (an OBJ's `vn`, unit length or not), which faces' corners
+    /// refer to ([`ModelFace::normals`]); empty when the file gives none for some corner (then
+    /// [`LoadedModel::warnings`] says so, and [`LoadedModel::vertex_normals`] computes them).
+    pub normals: Vec<[f32; 3]>,
     /// The normalisation: `normalised = (original − centre) · scale`.
     pub centre: [f32; 3],
     /// See `centre`.
@@ -225,6 +236,41 @@ impl LoadedModel {
             })
             .collect();
         Ok(f(&Mesh::new(&vertices, &faces)))
+    }
+
+    /// One normal per vertex for smooth shading ([`crate::vertex_normals`]): the file's own when
+    /// every face corner has one, else computed from the faces with a crease angle of
+    /// `crease_degrees` (edges whose faces are farther apart stay sharp). Vertices that need
+    /// several normals are split; the result renumbers the faces, in order.
+    pub fn vertex_normals(&self, crease_degrees: f64) -> VertexNormals {
+        let faces: Vec<&[u32]> = self.faces.iter().map(|f| &f.indices[..]).collect();
+        let given = !self.normals.is_empty()
+            && self
+                .faces
+                .iter()
+                .all(|f| f.normals.len() == f.indices.len());
+        if given {
+            let corners: Vec<Vec<[f64; 3]>> = self
+                .faces
+                .iter()
+                .map(|f| {
+                    f.normals
+                        .iter()
+                        .map(|&n| {
+                            self.normals
+                                .get(n as usize)
+                                .map_or([0.0; 3], |n| n.map(f64::from))
+                        })
+                        .collect()
+                })
+                .collect();
+            let corners: Vec<&[[f64; 3]]> = corners.iter().map(|c| &c[..]).collect();
+            vertex_normals::from_corners(&faces, &corners)
+        } else {
+            let positions: Vec<[f64; 3]> =
+                self.positions.iter().map(|p| p.map(f64::from)).collect();
+            vertex_normals::from_faces(&positions, &faces, crease_degrees)
+        }
     }
 
     /// Where face number `face` (0-based, as zrow's errors count) came from.
@@ -293,6 +339,7 @@ struct Raw {
     positions: Vec<[f32; 3]>,
     origins: Vec<Option<Origin>>,
     faces: Vec<ModelFace>,
+    normals: Vec<[f32; 3]>,
 }
 
 /// Checks counts, normalises.
@@ -340,6 +387,7 @@ fn finish(file: &str, raw: Raw) -> Result<LoadedModel, ModelError> {
         positions,
         vertex_origins: raw.origins,
         faces: raw.faces,
+        normals: raw.normals,
         centre: centre.map(|c| c as f32),
         scale: scale as f32,
         warnings: Vec::new(),
@@ -365,8 +413,10 @@ fn parse_off(file: &str, data: &[u8]) -> Result<LoadedModel, Error> {
                 indices: f.indices.clone(),
                 color: f.rgb565(),
                 origin: Some(Origin::Line(f.line)),
+                normals: Vec::new(),
             })
             .collect(),
+        normals: Vec::new(),
     };
     Ok(finish(file, raw)?)
 }
@@ -406,6 +456,10 @@ fn finite(what: &str, token: &str) -> Result<f32, String> {
 struct ObjCheck {
     vertices: Vec<(usize, [f32; 3])>,
     face_lines: Vec<usize>,
+    /// `vn` lines.
+    normals: usize,
+    /// Face corners without a normal index, and the first one's line.
+    bare_corners: (usize, usize),
 }
 
 /// Resolves one OBJ index (1-based, or negative from the end) against `count` elements
@@ -435,6 +489,8 @@ fn check_obj(file: &str, data: &[u8]) -> Result<ObjCheck, ModelError> {
     let mut check = ObjCheck {
         vertices: Vec::new(),
         face_lines: Vec::new(),
+        normals: 0,
+        bare_corners: (0, 0),
     };
     let (mut texcoords, mut normals) = (0usize, 0usize);
     for (line, tokens) in text_lines(data) {
@@ -498,6 +554,11 @@ fn check_obj(file: &str, data: &[u8]) -> Result<ObjCheck, ModelError> {
                     }
                     if let Some(vn) = parts.next().filter(|s| !s.is_empty()) {
                         obj_index("normal", vn, normals).map_err(err)?;
+                    } else {
+                        if check.bare_corners.0 == 0 {
+                            check.bare_corners.1 = line;
+                        }
+                        check.bare_corners.0 += 1;
                     }
                     if parts.next().is_some() {
                         return Err(err(format!(
@@ -511,6 +572,7 @@ fn check_obj(file: &str, data: &[u8]) -> Result<ObjCheck, ModelError> {
             _ => {}
         }
     }
+    check.normals = normals;
     Ok(check)
 }
 
@@ -544,7 +606,16 @@ fn parse_obj(file: &str, data: &[u8], dir: &Path) -> Result<LoadedModel, ModelEr
         })
         .map_err(|e| ModelError::new(file, None, format!("cannot read OBJ: {e}")))?;
     let materials = materials.unwrap_or_default();
-    let warnings = warnings.into_inner();
+    let mut warnings = warnings.into_inner();
+    // The file's normals, if every face corner has one (tobj fills gaps with a neighbour's).
+    let (bare, bare_line) = check.bare_corners;
+    let file_normals = check.normals > 0 && bare == 0;
+    if check.normals > 0 && bare > 0 {
+        warnings.push(format!(
+            "{file}:{bare_line}: {bare} face corners have no normal (`v//vn`), the first here: \
+             the file's normals are not used (smooth shading computes them from the faces)"
+        ));
+    }
 
     // Vertex lines by exact position (tobj re-indexes per object).
     let mut line_of: HashMap<[u32; 3], usize> = HashMap::new();
@@ -556,6 +627,7 @@ fn parse_obj(file: &str, data: &[u8], dir: &Path) -> Result<LoadedModel, ModelEr
         positions: Vec::new(),
         origins: Vec::new(),
         faces: Vec::new(),
+        normals: Vec::new(),
     };
     let mut index_of: HashMap<[u32; 3], usize> = HashMap::new();
     let mut obj_face = 0usize; // faces as the file has them, to find their lines
@@ -597,6 +669,13 @@ fn parse_obj(file: &str, data: &[u8], dir: &Path) -> Result<LoadedModel, ModelEr
         } else {
             mesh.face_arities.iter().map(|&a| a as usize).collect()
         };
+        // This object's normals follow the earlier objects'.
+        let normal_base = raw.normals.len();
+        let with_normals = file_normals && mesh.normal_indices.len() == mesh.indices.len();
+        if with_normals {
+            raw.normals
+                .extend(mesh.normals.chunks_exact(3).map(|n| [n[0], n[1], n[2]]));
+        }
         let mut next = 0usize;
         for arity in arities {
             let origin = lines_known
@@ -606,6 +685,13 @@ fn parse_obj(file: &str, data: &[u8], dir: &Path) -> Result<LoadedModel, ModelEr
             let Some(ids) = mesh.indices.get(next..next + arity) else {
                 return Err(ModelError::new(file, origin, "face indices missing"));
             };
+            let normals: Vec<u32> = match mesh.normal_indices.get(next..next + arity) {
+                Some(ns) if with_normals => ns
+                    .iter()
+                    .map(|&n| (normal_base + n as usize).min(u32::MAX as usize) as u32)
+                    .collect(),
+                _ => Vec::new(),
+            };
             next += arity;
             let mut indices = Vec::with_capacity(arity);
             for &i in ids {
@@ -614,12 +700,14 @@ fn parse_obj(file: &str, data: &[u8], dir: &Path) -> Result<LoadedModel, ModelEr
                 };
                 indices.push(i.min(u32::MAX as usize) as u32);
             }
-            // A polygon beyond zrow's limit becomes a fan of polygons within it.
+            // A polygon beyond zrow's limit becomes a fan of polygons within it (the corners'
+            // normals with them).
             if indices.len() <= MAX_FACE_VERTICES {
                 raw.faces.push(ModelFace {
                     indices,
                     color,
                     origin,
+                    normals,
                 });
             } else {
                 let mut start = 1;
@@ -627,10 +715,15 @@ fn parse_obj(file: &str, data: &[u8], dir: &Path) -> Result<LoadedModel, ModelEr
                     let end = (start + MAX_FACE_VERTICES - 1).min(indices.len());
                     let mut part = vec![indices[0]];
                     part.extend_from_slice(&indices[start..end]);
+                    let part_normals = match (normals.first(), normals.get(start..end)) {
+                        (Some(&n0), Some(rest)) => [&[n0][..], rest].concat(),
+                        _ => Vec::new(),
+                    };
                     raw.faces.push(ModelFace {
                         indices: part,
                         color,
                         origin,
+                        normals: part_normals,
                     });
                     start = end - 1;
                 }
@@ -672,6 +765,7 @@ fn parse_stl(file: &str, data: &[u8]) -> Result<LoadedModel, ModelError> {
         positions: Vec::new(),
         origins: Vec::new(),
         faces: Vec::new(),
+        normals: Vec::new(),
     };
     for (t, (tri, origin)) in triangles.iter().zip(&origins).enumerate() {
         let mut indices = Vec::with_capacity(3);
@@ -703,6 +797,7 @@ fn parse_stl(file: &str, data: &[u8]) -> Result<LoadedModel, ModelError> {
             indices,
             color: default,
             origin: Some(origin.face()),
+            normals: Vec::new(),
         });
     }
     finish(file, raw)
@@ -942,6 +1037,58 @@ mod tests {
 
     fn obj(text: &str) -> Result<LoadedModel, String> {
         parse_obj("t.obj", text.as_bytes(), Path::new(".")).map_err(|e| e.to_string())
+    }
+
+    /// A unit square of two triangles, `vn` per corner: the file's normals are kept, a
+    /// vertex split where its corners' normals differ, a fan split carries them.
+    #[test]
+    fn obj_normals_are_the_files_when_every_corner_has_one() {
+        let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nvn 0 0.6 0.8\n\
+                    f 1//1 2//1 3//1\nf 1//2 3//1 4//1\n";
+        let m = obj(text).unwrap();
+        assert_eq!(m.normals.len(), 2);
+        assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+        let normal = |f: usize, k: usize| m.normals[m.faces[f].normals[k] as usize];
+        assert_eq!(normal(0, 0), [0.0, 0.0, 1.0]);
+        assert_eq!(normal(1, 0), [0.0, 0.6, 0.8]);
+        let v = m.vertex_normals(45.0);
+        assert_eq!(v.source, [0, 1, 2, 0, 3]);
+        let tilted = v.normals[v.faces[1][0] as usize];
+        assert!((tilted[1] - 0.6).abs() < 1e-7 && (tilted[2] - 0.8).abs() < 1e-7);
+        // A polygon with more corners than MAX_FACE_VERTICES, fanned into pieces: each piece's
+        // corners keep their own normal.
+        let (n, mut text, mut face) = (MAX_FACE_VERTICES + 3, String::new(), "f".to_owned());
+        for k in 0..n {
+            let a = k as f32 * std::f32::consts::TAU / n as f32;
+            text += &format!("v {} {} 0\nvn {k} 0 1\n", a.cos(), a.sin());
+            face += &format!(" {0}//{0}", k + 1);
+        }
+        let m = obj(&format!("{text}{face}\n")).unwrap();
+        assert_eq!(m.faces.len(), 2);
+        for f in &m.faces {
+            assert_eq!(f.normals.len(), f.indices.len());
+            for (&i, &n) in f.indices.iter().zip(&f.normals) {
+                assert_eq!(m.normals[n as usize][0], i as f32, "vertex {i}");
+            }
+        }
+    }
+
+    /// Normals on some corners only: not used (a warning naming the line), computed instead.
+    #[test]
+    fn obj_normals_on_some_corners_only_are_not_used() {
+        let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\nf 1 3 2\n";
+        let m = obj(text).unwrap();
+        assert!(m.normals.is_empty());
+        assert!(m.faces.iter().all(|f| f.normals.is_empty()));
+        assert_eq!(m.warnings.len(), 1);
+        assert!(
+            m.warnings[0].starts_with("t.obj:6: 3 face corners"),
+            "{}",
+            m.warnings[0]
+        );
+        // From the faces: two faces back to back are 180° apart, a crease at any angle.
+        let v = m.vertex_normals(45.0);
+        assert_eq!(v.normals.len(), 6);
     }
 
     #[test]

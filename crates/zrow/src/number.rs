@@ -762,7 +762,11 @@ fn floor_f32(t: f32) -> i64 {
         // Within an i32 (every caller's case): the same truncation and rounding as the i64
         // conversions, one FPU instruction each where the 64-bit ones are library calls.
         let i = t as i32;
-        return if (i as f32) > t { i as i64 - 1 } else { i as i64 };
+        return if (i as f32) > t {
+            i as i64 - 1
+        } else {
+            i as i64
+        };
     }
     let i = t as i64;
     if (i as f32) > t {
@@ -1025,8 +1029,24 @@ mod tests {
             }
         };
         let check = |t: f32| assert_eq!(floor_f32(t), floor_ref(t), "{t}");
-        for e in [0.0f32, 0.5, 1.0, 8_388_607.5, 8_388_608.0, 16_777_217.0, 2_147_483_520.0] {
-            for t in [e, -e, 2_147_483_648.0, -2_147_483_648.0, 3.0e9, -3.0e9, 1.0e-30] {
+        for e in [
+            0.0f32,
+            0.5,
+            1.0,
+            8_388_607.5,
+            8_388_608.0,
+            16_777_217.0,
+            2_147_483_520.0,
+        ] {
+            for t in [
+                e,
+                -e,
+                2_147_483_648.0,
+                -2_147_483_648.0,
+                3.0e9,
+                -3.0e9,
+                1.0e-30,
+            ] {
                 check(t);
                 check(f32::from_bits(t.to_bits() + 1));
                 check(-f32::from_bits(t.to_bits() + 1));
@@ -1044,7 +1064,12 @@ mod tests {
             let v = (s as i64) >> (s >> 58);
             assert_eq!(i64_to_f32(v).to_bits(), (v as f32).to_bits(), "{v}");
         }
-        for v in [i32::MIN as i64, i32::MAX as i64, i32::MAX as i64 + 1, i32::MIN as i64 - 1] {
+        for v in [
+            i32::MIN as i64,
+            i32::MAX as i64,
+            i32::MAX as i64 + 1,
+            i32::MIN as i64 - 1,
+        ] {
             assert_eq!(i64_to_f32(v).to_bits(), (v as f32).to_bits(), "{v}");
         }
     }
