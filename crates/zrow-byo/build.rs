@@ -2,7 +2,9 @@
 //! `assets/models/icosphere.stl` into `$OUT_DIR/torus.rs`, `$OUT_DIR/cube.rs` and
 //! `$OUT_DIR/icosphere.rs` (const data for flash: Q16.16 positions, u8 indices, per-face normals,
 //! scan-line capacities for every orientation at 240×240, distance 3), the icosphere once more
-//! with compact positions into `$OUT_DIR/icosphere_compact.rs`, and keeps each
+//! with compact positions into `$OUT_DIR/icosphere_compact.rs`, the torus once more with one
+//! normal per vertex for smooth shading (crease angle 60°) into `$OUT_DIR/torus_smooth.rs`, and
+//! keeps each
 //! converter report next to it (`$OUT_DIR/NAME.txt`). A bad model fails the build with the
 //! converter's one-line error naming file and line.
 
@@ -16,11 +18,16 @@ fn main() {
         compact: true,
         ..ConvertOptions::default()
     };
+    let smooth = ConvertOptions {
+        smooth: Some(60.0),
+        ..ConvertOptions::default()
+    };
     for (file, name, opts) in [
         ("torus.off", "torus", &ConvertOptions::default()),
         ("cube.obj", "cube", &ConvertOptions::default()),
         ("icosphere.stl", "icosphere", &ConvertOptions::default()),
         ("icosphere.stl", "icosphere_compact", &compact),
+        ("torus.off", "torus_smooth", &smooth),
     ] {
         match write_for_build(&models.join(file), opts, &out, name) {
             Ok(report) => {

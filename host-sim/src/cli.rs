@@ -17,6 +17,7 @@
 //! ```text
 //! zrow-sim convert --model FILE --out FILE.rs [--format q16.16|f32] [--size WxH]
 //!                  [--distance D] [--name NAME] [--checks N] [--strict] [--compact]
+//!                  [--smooth DEG]
 //! ```
 //!
 //! Flags may come in any order, as `--flag value` or `--flag=value` (`--strict` and
@@ -58,7 +59,7 @@ usage:
   --distance D    camera distance from the origin, 0 < D < 20 (default 3)
 
   zrow-sim convert --model FILE --out FILE.rs [--format FMT] [--size WxH] [--distance D]
-                   [--name NAME] [--checks N] [--strict] [--compact]
+                   [--name NAME] [--checks N] [--strict] [--compact] [--smooth DEG]
                   writes the model as const Rust data for flash (normalised positions in the
                   format, per-face normals, u8 or u16 indices, Rgb565 colours) with the
                   scan-line capacities measured over all orientations at that size and
@@ -69,6 +70,10 @@ usage:
   --strict        refuse to split or triangulate faces, and non-manifold models: an error
   --compact       positions as 16-bit integers at 2^-14 (zrow::Vectors::Compact): 6 bytes
                   a vertex instead of 12, each coordinate within 2^-15 of the model's
+  --smooth DEG    also one normal per vertex for smooth shading (VERTEX_NORMALS): the OBJ's
+                  own (vn) when every face corner has one, else averaged from the faces, smooth
+                  across edges whose faces are at most DEG degrees apart (0..=180; 45 keeps a
+                  cube's edges sharp); a vertex that needs several normals is copied
 
 Input files must be regular files of at most 256 MiB (a device, FIFO or directory is refused
 before it is read). --out is checked before any work and replaced only once fully written.
@@ -180,6 +185,7 @@ const CONVERT_FLAGS: &[&str] = &[
     "--checks",
     "--strict",
     "--compact",
+    "--smooth",
 ];
 
 /// `a, b or c`.
@@ -222,6 +228,7 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
     let mut compact = false;
     let mut name_flag = None;
     let mut checks = None;
+    let mut smooth = None;
     while let Some(arg) = args.next() {
         let text = arg
             .to_str()
@@ -314,6 +321,20 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
                 })?;
                 checks.replace(parsed).is_some()
             }
+            "--smooth" => {
+                let v = text_value()?;
+                let parsed = v
+                    .parse::<f64>()
+                    .ok()
+                    .filter(|d| (0.0..=180.0).contains(d))
+                    .ok_or_else(|| {
+                        usage(format!(
+                            "bad --smooth `{}`: expected a crease angle in degrees, 0..=180",
+                            v.escape_debug()
+                        ))
+                    })?;
+                smooth.replace(parsed).is_some()
+            }
             _ => {
                 // --yaw, --pitch, --distance
                 let v = text_value()?;
@@ -393,6 +414,7 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
                 stem
             }),
             check_views: checks.unwrap_or(defaults.check_views),
+            smooth,
             ..defaults
         };
         View {
@@ -611,10 +633,12 @@ mod tests {
             "--compact",
             "--distance",
             "4",
+            "--smooth=30",
         ];
         let Command::Render(RenderArgs::Convert(got)) = parse(&a).unwrap() else {
             panic!()
         };
+        assert_eq!(got.options.smooth, Some(30.0));
         assert_eq!(got.model, PathBuf::from("dir/my model.obj"));
         assert_eq!(got.out, PathBuf::from("m.rs"));
         let o = &got.options;
@@ -657,6 +681,12 @@ mod tests {
             ),
             (&["render", "--compact"][..], "unknown argument `--compact`"),
             (&["convert", "--checks", "many"][..], "bad --checks `many`"),
+            (&["convert", "--smooth", "200"][..], "bad --smooth `200`"),
+            (&["convert", "--smooth", "NaN"][..], "bad --smooth `NaN`"),
+            (
+                &["convert", "--smooth", "9", "--smooth", "9"][..],
+                "--smooth given twice",
+            ),
             (&["convert", "--yaw", "3"][..], "unknown argument `--yaw`"),
         ] {
             let e = parse(args).unwrap_err().to_string();

@@ -373,6 +373,84 @@ fn the_emitted_text_holds_exactly_the_converted_values() {
     }
 }
 
+/// `smooth` ([`ConvertOptions::smooth`], `--smooth`): one normal per vertex, emitted exactly;
+/// the cube's corners split at a 45° crease (each copy its face's normal) and shared at 100°
+/// (along the diagonals); an OBJ's own `vn` used; the split mesh draws what the flat one does.
+#[test]
+fn smooth_emits_one_normal_per_vertex() {
+    let cube = load(&asset("cube.obj")).unwrap();
+    let flat = convert_model(&cube, &quick()).unwrap();
+    assert!(flat.vertex_normals.is_empty() && !flat.rust.contains("VERTEX_NORMALS"));
+    let sharp = convert_model(
+        &cube,
+        &ConvertOptions {
+            smooth: Some(45.0),
+            ..quick()
+        },
+    )
+    .unwrap();
+    assert_eq!((sharp.vertices.len(), sharp.vertex_normals.len()), (24, 24));
+    for (face, normal) in sharp.faces.iter().zip(&sharp.normals) {
+        for &i in &face.indices {
+            assert_eq!(sharp.vertex_normals[i as usize], *normal);
+            assert_eq!(
+                sharp.vertices[i as usize],
+                flat.vertices[flat
+                    .source
+                    .iter()
+                    .position(|&s| s == sharp.source[i as usize])
+                    .unwrap()]
+            );
+        }
+    }
+    assert!(sharp.report.notes.iter().any(|n| n.contains(
+        "smooth shading: vertex normals averaged from the faces, crease angle 45°; 8 vertices \
+         become 24"
+    )));
+    let q = |x: f64| format!("zrow::Q16_16::from_bits({})", (x * 65536.0) as i32);
+    let v3 = |v: &[f64; 3]| format!("zrow::Vec3::new({}, {}, {}),", q(v[0]), q(v[1]), q(v[2]));
+    let want: Vec<String> = sharp.vertex_normals.iter().map(v3).collect();
+    assert_eq!(block(&sharp.rust, "VERTEX_NORMALS"), want);
+    assert_eq!(sharp.report.flash.normals, 12 * (6 + 24));
+    let round = convert_model(
+        &cube,
+        &ConvertOptions {
+            smooth: Some(100.0),
+            ..quick()
+        },
+    )
+    .unwrap();
+    assert_eq!(round.vertices.len(), 8);
+    let d = (65536.0 / 3f64.sqrt()).round() / 65536.0;
+    for (n, p) in round.vertex_normals.iter().zip(&round.vertices) {
+        assert_eq!(*n, p.map(|c| d * c.signum()), "{p:?}");
+    }
+    // The split cube draws the flat cube's pixels (same positions, same face normals).
+    let view = View::default();
+    let a = zrow_sim::convert::render_converted(&flat, &view, 96, 80).unwrap();
+    let b = zrow_sim::convert::render_converted(&sharp, &view, 96, 80).unwrap();
+    assert!(a.pixels == b.pixels);
+    // A file's own normals: a square of two triangles, one corner tilted.
+    let m = obj(
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nvn 0 0.6 0.8\n\
+                 f 1//1 2//1 3//1\nf 1//2 3//1 4//1\n",
+    );
+    let c = convert_model(
+        &m,
+        &ConvertOptions {
+            smooth: Some(45.0),
+            ..quick()
+        },
+    )
+    .unwrap();
+    assert_eq!(c.vertex_normals.len(), 5);
+    assert!(c
+        .report
+        .notes
+        .iter()
+        .any(|n| n.contains("the file's normals (vn); 4 vertices become 5")));
+}
+
 #[test]
 fn the_converted_mesh_draws_like_the_loaded_model() {
     let views = [

@@ -45,6 +45,13 @@ pub mod icosphere {
     zrow::include_mesh!("icosphere");
 }
 
+/// `assets/models/torus.off` converted with one normal per vertex (`--smooth 60`:
+/// `VERTEX_NORMALS`, for smooth shading): its faces are 22.5° and 45° apart, so every edge is
+/// smooth and every vertex keeps one normal, the same vertices and faces as [`torus`].
+pub mod torus_smooth {
+    zrow::include_mesh!("torus_smooth");
+}
+
 /// `assets/models/icosphere.stl` converted with compact positions (`--compact`: 16-bit
 /// integers at 2^-14, [`zrow::Vectors::Compact`], 6 bytes a vertex instead of 12).
 pub mod icosphere_compact {

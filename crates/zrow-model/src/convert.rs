@@ -3,7 +3,7 @@
 //!
 //! ```text
 //! zrow-sim convert --model FILE --out FILE.rs [--format q16.16|f32] [--size WxH]
-//!                  [--distance D] [--name NAME] [--strict] [--compact]
+//!                  [--distance D] [--name NAME] [--strict] [--compact] [--smooth DEG]
 //! ```
 //!
 //! or, from a build script, [`write_for_build`] (then `zrow::include_mesh!("NAME")`). The
@@ -67,7 +67,10 @@
 //! indices), `MESH` (`zrow::Mesh::with_normals`) — or, for a model of triangles alone,
 //! `TRIANGLES` and `COLORS` (one colour, or one per triangle) instead of `FACES`, and `MESH`
 //! from `zrow::Mesh::triangles_with_normals`: no 12-byte `zrow::Face` per face, less than half
-//! the flash — the consts `WIDTH`, `HEIGHT`, `POLYGONS`,
+//! the flash — with [`ConvertOptions::smooth`] (`--smooth DEG`) `VERTEX_NORMALS`, one unit
+//! normal per vertex ([`crate::vertex_normals`]: the file's own, or averaged from the faces
+//! within the crease angle; a vertex that needs several normals is copied, before the
+//! capacities are measured, so `VERTEX_SLOTS` counts the copies) — the consts `WIDTH`, `HEIGHT`, `POLYGONS`,
 //! `EDGES`, `VERTEX_SLOTS`, `ACTIVE`, and `pub type Renderer = zrow::Scanline<N, WIDTH, VERTEX_SLOTS, POLYGONS,
 //! ACTIVE>`, every public item documented, the whole report in a header comment. Colours are built with
 //! `zrow::Rgb565::new` (zrow re-exports the colour type), so the including crate needs zrow
@@ -133,6 +136,11 @@ pub struct ConvertOptions {
     pub check_views: usize,
     /// Seed of the random orientations.
     pub seed: u64,
+    /// Per-vertex normals for smooth shading, `VERTEX_NORMALS` ([`crate::vertex_normals`]):
+    /// `Some(crease angle, degrees)` emits them, the file's own (an OBJ's `vn`) when every face
+    /// corner has one, else computed from the faces with that crease angle; vertices that need
+    /// several normals are split. `None`: none emitted.
+    pub smooth: Option<f64>,
 }
 
 impl Default for ConvertOptions {
@@ -154,6 +162,7 @@ impl Default for ConvertOptions {
             refine_steps: 150,
             check_views: 10_000,
             seed: 1,
+            smooth: None,
         }
     }
 }
@@ -255,7 +264,7 @@ pub struct DepthRange {
 pub struct FlashBytes {
     /// `VERTICES`: 12 bytes each, 6 compact.
     pub vertices: usize,
-    /// `NORMALS`: 12 bytes each.
+    /// `NORMALS`: 12 bytes each (6 compact); and `VERTEX_NORMALS` when emitted.
     pub normals: usize,
     /// `FACES`: 12 bytes each (slice 8, colour 2, alpha 1, padding 1); for a model of
     /// triangles, `COLORS`: 2 bytes each (one for all, or one per triangle).
@@ -301,7 +310,7 @@ pub struct Report {
     pub notes: Vec<String>,
     /// Vertex quantisation error.
     pub position_error: QuantError,
-    /// Largest error of a normal's coordinate after quantisation.
+    /// Largest error of a normal's coordinate after quantisation (face and vertex normals).
     pub normal_error: f64,
     /// The views.
     pub views: ViewStats,
@@ -467,6 +476,9 @@ pub struct Converted {
     pub faces: Vec<ConvertedFace>,
     /// The emitted normals, exactly, one per face.
     pub normals: Vec<[f64; 3]>,
+    /// The emitted per-vertex normals, exactly, one per vertex ([`ConvertOptions::smooth`]), or
+    /// empty.
+    pub vertex_normals: Vec<[f64; 3]>,
     /// The emitted capacities (`width` is the frame width).
     pub capacities: Requirements,
     /// What was done and found.
@@ -694,8 +706,10 @@ pub fn convert_model_with(
         k = end;
     }
 
-    // 2. Planarity: non-planar faces become fans of triangles.
+    // 2. Planarity: non-planar faces become fans of triangles (with the file's corner normals,
+    // kept beside them for smooth shading).
     let mut faces: Vec<ConvertedFace> = Vec::with_capacity(model.faces.len());
+    let mut corner_normals: Vec<Vec<u32>> = Vec::with_capacity(model.faces.len());
     for face in &model.faces {
         let points: Vec<P3> = face
             .indices
@@ -727,6 +741,12 @@ pub fn convert_model_with(
                     color: face.color,
                     origin: face.origin,
                 });
+                corner_normals.push(
+                    [0, w, w + 1]
+                        .iter()
+                        .filter_map(|&k| face.normals.get(k).copied())
+                        .collect(),
+                );
             }
         } else {
             faces.push(ConvertedFace {
@@ -734,6 +754,7 @@ pub fn convert_model_with(
                 color: face.color,
                 origin: face.origin,
             });
+            corner_normals.push(face.normals.clone());
         }
     }
 
@@ -757,6 +778,59 @@ pub fn convert_model_with(
             pos.len() - kept.len()
         ));
     }
+    let mut exact: Vec<P3> = kept.iter().map(|&i| pos[i]).collect();
+
+    // 4. Manifold check (on the vertices as the file shares them).
+    manifold(file, &faces, opts.strict, &mut notes)?;
+
+    // 5. Per-vertex normals, on request: vertices split where they need several.
+    let smooth = opts.smooth.map(|crease| {
+        let indices: Vec<&[u32]> = faces.iter().map(|f| &f.indices[..]).collect();
+        let given = !model.normals.is_empty()
+            && faces
+                .iter()
+                .zip(&corner_normals)
+                .all(|(f, n)| f.indices.len() == n.len());
+        let (split, from) = if given {
+            let corners: Vec<Vec<P3>> = corner_normals
+                .iter()
+                .map(|c| {
+                    c.iter()
+                        .map(|&n| {
+                            model
+                                .normals
+                                .get(n as usize)
+                                .map_or([0.0; 3], |n| n.map(f64::from))
+                        })
+                        .collect()
+                })
+                .collect();
+            let corners: Vec<&[P3]> = corners.iter().map(|c| &c[..]).collect();
+            (
+                crate::vertex_normals::from_corners(&indices, &corners),
+                "the file's normals (vn)".to_owned(),
+            )
+        } else {
+            (
+                crate::vertex_normals::from_faces(&exact, &indices, crease),
+                format!("averaged from the faces, crease angle {crease}°"),
+            )
+        };
+        notes.push(format!(
+            "{}smooth shading: vertex normals {from}; {} vertices become {} ({} copies where a \
+             vertex needs several normals)",
+            place(file, None),
+            exact.len(),
+            split.source.len(),
+            split.source.len() - exact.len().min(split.source.len())
+        ));
+        kept = split.source.iter().map(|&i| kept[i as usize]).collect();
+        exact = split.source.iter().map(|&i| exact[i as usize]).collect();
+        for (face, renumbered) in faces.iter_mut().zip(split.faces) {
+            face.indices = renumbered;
+        }
+        split.normals
+    });
     let index = IndexType::for_vertices(kept.len()).ok_or_else(|| {
         model_error(
             file,
@@ -768,12 +842,8 @@ pub fn convert_model_with(
             ),
         )
     })?;
-    let exact: Vec<P3> = kept.iter().map(|&i| pos[i]).collect();
 
-    // 4. Manifold check.
-    manifold(file, &faces, opts.strict, &mut notes)?;
-
-    // 5. Quantisation.
+    // 6. Quantisation.
     let (vertices, position_lsb): (Vec<P3>, f64) = if opts.compact {
         let v = exact.iter().map(|p| p.map(quantise_compact)).collect();
         (v, 1.0 / f64::from(1u32 << COMPACT_SHIFT))
@@ -815,8 +885,23 @@ pub fn convert_model_with(
             degenerate.0
         ));
     }
+    let vertex_normals: Vec<P3> = smooth
+        .unwrap_or_default()
+        .iter()
+        .map(|n| {
+            let q = if opts.compact {
+                n.map(quantise_compact)
+            } else {
+                n.map(|c| quantise(opts.format, c))
+            };
+            for (a, b) in n.iter().zip(&q) {
+                normal_error = normal_error.max((a - b).abs());
+            }
+            q
+        })
+        .collect();
 
-    // 6. Requirements over the views.
+    // 7. Requirements over the views.
     let (views, measured_depth) = match opts.format {
         Format::Q16_16 => measure_all::<Q16_16>(file, &vertices, &faces, &normals, opts, progress)?,
         Format::F32 => measure_all::<f32>(file, &vertices, &faces, &normals, opts, progress)?,
@@ -853,7 +938,7 @@ pub fn convert_model_with(
     };
     let flash = FlashBytes {
         vertices: if opts.compact { 6 } else { 12 } * vertices.len(),
-        normals: if opts.compact { 6 } else { 12 } * normals.len(),
+        normals: if opts.compact { 6 } else { 12 } * (normals.len() + vertex_normals.len()),
         faces: if triangles_only(&faces) {
             2 * triangle_colors(&faces).len()
         } else {
@@ -892,6 +977,7 @@ pub fn convert_model_with(
         source: kept,
         faces,
         normals,
+        vertex_normals,
         capacities,
         report,
         rust: String::new(),
@@ -1540,6 +1626,18 @@ fn emit(c: &Converted, name: &str) -> String {
         &c.normals,
         c,
     );
+    if !c.vertex_normals.is_empty() {
+        let _ = writeln!(s, "];\n");
+        emit_vectors(
+            &mut s,
+            "/// One unit normal per vertex, model space, for smooth (Gouraud) shading: the \
+             file's own or\n/// averaged from the faces within the crease angle (the report \
+             says which); `MESH` draws flat\n/// and does not read them",
+            "VERTEX_NORMALS",
+            &c.vertex_normals,
+            c,
+        );
+    }
     let rgb = |c: &zrow::Rgb565| format!("zrow::Rgb565::new({}, {}, {})", c.r(), c.g(), c.b());
     let mesh = if triangles_only(&c.faces) {
         let _ = writeln!(

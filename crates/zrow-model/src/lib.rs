@@ -13,7 +13,9 @@
 //!    build script, included with `zrow::include_mesh!`); the emitted code names only `zrow`;
 //! 3. [`structure`] tells whether a mesh is one closed convex solid (then back-face culling
 //!    alone draws it exactly), in O(E log E);
-//! 4. [`off`] is the OFF format, also the simulator's scene file.
+//! 4. [`off`] is the OFF format, also the simulator's scene file;
+//! 5. [`vertex_normals`] gives every vertex a normal for smooth shading (the file's, or
+//!    averaged from the faces within a crease angle), the converter's `--smooth`.
 //!
 //! Every failure is an [`Error`] that prints on one line.
 //!
