@@ -860,8 +860,11 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
             // projected and snapped.
             let base = buf.claim(mesh.vertices.len());
             if let Some(b) = base {
+                let prepared = mv.prepare();
                 for (slot, v) in buf.slots_from(b).iter_mut().zip(mesh.vertices.iter()) {
-                    let c = mv.apply_checked_with(cfg.math, v).map(|v| proj.clip(v));
+                    let c = prepared
+                        .apply_checked_with(cfg.math, v)
+                        .map(|v| proj.clip(v));
                     *slot = c
                         .filter(|c| proj.inside(c))
                         .and_then(|c| proj.screen(&c))

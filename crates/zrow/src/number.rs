@@ -168,6 +168,25 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
         let _ = plain;
         Self::affine_row(row, p)
     }
+    /// A transform entry made ready for [`Scalar::affine_row_halved`]: f32's Veltkamp halves
+    /// (split once per transform, not once per point); the exact formats need nothing but the
+    /// value.
+    #[inline]
+    fn row_halves(self) -> (Self, Self) {
+        (self, Self::ZERO)
+    }
+    /// [`Scalar::affine_row_as`] with the row's first three entries' [`Scalar::row_halves`]
+    /// given: the same result, without splitting the entries again.
+    #[inline]
+    fn affine_row_halved(
+        row: &[Self; 4],
+        halves: &[(Self, Self); 3],
+        p: [Self; 3],
+        plain: bool,
+    ) -> Option<Self> {
+        let _ = halves;
+        Self::affine_row_as(row, p, plain)
+    }
     /// The direction of the face normal `(b − a) × (c − a)`, scaled by a power of two (f32: by
     /// the reciprocal of its largest component) so that its largest component lies in
     /// [1/2, 1]: a direction with the format's full precision, for lighting, without a
@@ -855,6 +874,24 @@ impl Scalar for f32 {
             return Self::affine_row(row, p);
         }
         let v = dot2::plain_row_f32(row, p);
+        v.is_finite().then_some(v)
+    }
+    #[inline]
+    fn row_halves(self) -> (Self, Self) {
+        dot2::halves_f32(self)
+    }
+    #[inline]
+    fn affine_row_halved(
+        row: &[Self; 4],
+        halves: &[(Self, Self); 3],
+        p: [Self; 3],
+        plain: bool,
+    ) -> Option<Self> {
+        let v = if plain {
+            dot2::plain_row_f32(row, p)
+        } else {
+            dot2::affine_row_halved_f32(row, halves, p)
+        };
         v.is_finite().then_some(v)
     }
     fn affine_row_saturating(row: &[Self; 4], p: [Self; 3]) -> Self {

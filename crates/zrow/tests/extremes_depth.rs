@@ -32,7 +32,7 @@ mod common;
 use common::*;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use zrow::geometry::DEPTH_RANGE;
-use zrow::{Affine, Camera, Config, Face, Scalar, Vec3, Q16_16, Q24_8};
+use zrow::{Affine, Camera, Config, Face, MathLib, Scalar, Vec3, Q16_16, Q24_8};
 
 /// Runs a generic item for every number format (adding a format is one line here).
 macro_rules! for_formats {
@@ -559,6 +559,7 @@ fn apply_errors<N: Scalar>() -> (f64, f64) {
         }
         let p = Vec3::new(near(&mut rng, sp), near(&mut rng, sp), near(&mut rng, sp));
         let got = a.apply(p);
+        same_when_prepared(&a, p);
         for (r, g) in [got.x, got.y, got.z].iter().enumerate() {
             let (want, peak) = exact_row(&a, r, &p);
             if want.abs() >= limit as f64 {
@@ -578,6 +579,34 @@ fn apply_errors<N: Scalar>() -> (f64, f64) {
         }
     }
     (fits, all)
+}
+
+/// `Affine::prepare` (f32's entries split once per transform) gives the bits of
+/// `Affine::apply_checked_with`, with either maths library.
+fn same_when_prepared<N: Scalar>(a: &Affine<N>, p: Vec3<N>) {
+    let bits = |v: Option<Vec3<N>>| v.map(|v| [v.x, v.y, v.z].map(|c| c.to_f64().to_bits()));
+    for math in [MathLib::Libm, MathLib::Micromath] {
+        assert_eq!(
+            bits(a.prepare().apply_checked_with(math, p)),
+            bits(a.apply_checked_with(math, p)),
+            "{} {math:?} {a:?} {p:?}",
+            N::NAME
+        );
+    }
+}
+
+/// Beyond f32's splitting range (entries above 2^115 overflow the split: the plain sum) and
+/// at its edge, prepared and unprepared transforms agree too.
+#[test]
+fn prepared_transforms_beyond_the_splitting_range() {
+    for big in [1.0e34f32, 4.0e34, 1.0e38, -3.0e38] {
+        let mut a = Affine::<f32>::identity();
+        a.m[0] = [big, 2.0, -big, 1.0];
+        a.m[1] = [0.5, big, 3.0, big];
+        for p in [[1.0, 1.0, 1.0], [1.0e-3, -2.0, 7.0], [0.0, 0.0, 0.0]] {
+            same_when_prepared(&a, Vec3::new(p[0], p[1], p[2]));
+        }
+    }
 }
 
 // 19. Transforms near the format's limits: within 3 units of the last place per output

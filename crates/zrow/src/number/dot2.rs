@@ -45,10 +45,17 @@ fn two_sum(a: f32, b: f32) -> (f32, f32) {
 /// `row[0]·p[0] + row[1]·p[1] + row[2]·p[2] + row[3]`, compensated (see the module).
 #[inline]
 pub(crate) fn affine_row_f32(row: &[f32; 4], p: [f32; 3]) -> f32 {
+    affine_row_halved_f32(row, &[split(row[0]), split(row[1]), split(row[2])], p)
+}
+
+/// [`affine_row_f32`] with the row's first three entries already split ([`split`], once per
+/// transform rather than once per point): the same bits.
+#[inline]
+pub(crate) fn affine_row_halved_f32(row: &[f32; 4], halves: &[(f32, f32); 3], p: [f32; 3]) -> f32 {
     let with_split = |v: f32| (v, split(v));
-    let (s0, e0) = two_product(with_split(row[0]), with_split(p[0]));
-    let (h1, r1) = two_product(with_split(row[1]), with_split(p[1]));
-    let (h2, r2) = two_product(with_split(row[2]), with_split(p[2]));
+    let (s0, e0) = two_product((row[0], halves[0]), with_split(p[0]));
+    let (h1, r1) = two_product((row[1], halves[1]), with_split(p[1]));
+    let (h2, r2) = two_product((row[2], halves[2]), with_split(p[2]));
     let (s1, q1) = two_sum(s0, h1);
     let (s2, q2) = two_sum(s1, h2);
     let (s3, q3) = two_sum(s2, row[3]);
@@ -59,6 +66,12 @@ pub(crate) fn affine_row_f32(row: &[f32; 4], p: [f32; 3]) -> f32 {
         // The splitting overflowed (or the result is beyond the format): the plain sum.
         plain_row_f32(row, p)
     }
+}
+
+/// Veltkamp's halves of a transform entry, for [`affine_row_halved_f32`].
+#[inline]
+pub(crate) fn halves_f32(a: f32) -> (f32, f32) {
+    split(a)
 }
 
 /// The same row summed plainly: three products and three sums, each rounded.
