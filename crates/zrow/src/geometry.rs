@@ -31,7 +31,7 @@
 //! inside end, so both neighbours get the same point.
 
 use crate::error::Error;
-use crate::math::{Affine, Vec3};
+use crate::math::{Affine, Prepared, Vec3};
 use crate::number::Scalar;
 use crate::raster::{
     signed_area2, Config, Cull, RasterVertex, GUARD_BAND, MAX_FACE_VERTICES, MAX_POLYGON_VERTICES,
@@ -786,7 +786,7 @@ fn emit_clipped<N: Scalar, I: MeshIndex>(
     mesh: &Mesh<'_, N, I>,
     face: &Face<'_, I>,
     this: u32,
-    mv: &Affine<N>,
+    mv: &Prepared<N>,
     proj: &Projector<N>,
     cfg: &Config,
     color: impl FnOnce() -> Rgb565,
@@ -859,8 +859,8 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
             // Every vertex once: transformed, and, inside the view volume and the guard band,
             // projected and snapped.
             let base = buf.claim(mesh.vertices.len());
+            let prepared = mv.prepare();
             if let Some(b) = base {
-                let prepared = mv.prepare();
                 for (slot, v) in buf.slots_from(b).iter_mut().zip(mesh.vertices.iter()) {
                     let c = prepared
                         .apply_checked_with(cfg.math, v)
@@ -934,7 +934,7 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
                     continue;
                 }
                 let color = || lighting.color(face.color, normal(k, face));
-                emit_clipped(mesh, face, this, &mv, &proj, cfg, color, buf, f)?;
+                emit_clipped(mesh, face, this, &prepared, &proj, cfg, color, buf, f)?;
             }
         }
         Ok(())
