@@ -590,18 +590,13 @@ fn dot(a: P3, b: P3) -> f64 {
 /// Newell's normal of a polygon (not normalised; its length is twice the area for a planar
 /// polygon) and the centroid of its vertices.
 fn newell(points: &[P3]) -> (P3, P3) {
-    let mut n = [0.0; 3];
     let mut c = [0.0; 3];
-    for (k, p) in points.iter().enumerate() {
-        let q = points[(k + 1) % points.len()];
-        n[0] += (p[1] - q[1]) * (p[2] + q[2]);
-        n[1] += (p[2] - q[2]) * (p[0] + q[0]);
-        n[2] += (p[0] - q[0]) * (p[1] + q[1]);
+    for p in points {
         for (ci, pi) in c.iter_mut().zip(p) {
             *ci += pi / points.len() as f64;
         }
     }
-    (n, c)
+    (crate::vertex_normals::newell(points), c)
 }
 
 fn unit(n: P3) -> Option<P3> {
@@ -858,6 +853,17 @@ pub fn convert_model_with(
     let mut degenerate = (0usize, None);
     let mut normals = Vec::with_capacity(faces.len());
     let mut normal_error = 0.0f64;
+    let mut quantise_normal = |n: P3| {
+        let q = if opts.compact {
+            n.map(quantise_compact)
+        } else {
+            n.map(|c| quantise(opts.format, c))
+        };
+        for (a, b) in n.iter().zip(&q) {
+            normal_error = normal_error.max((a - b).abs());
+        }
+        q
+    };
     for face in &faces {
         let points: Vec<P3> = face.indices.iter().map(|&i| exact[i as usize]).collect();
         let n = unit(newell(&points).0);
@@ -867,16 +873,7 @@ pub fn convert_model_with(
             }
             degenerate.0 += 1;
         }
-        let n = n.unwrap_or([0.0; 3]);
-        let q = if opts.compact {
-            n.map(quantise_compact)
-        } else {
-            n.map(|c| quantise(opts.format, c))
-        };
-        for (a, b) in n.iter().zip(&q) {
-            normal_error = normal_error.max((a - b).abs());
-        }
-        normals.push(q);
+        normals.push(quantise_normal(n.unwrap_or([0.0; 3])));
     }
     if degenerate.0 > 0 {
         notes.push(format!(
@@ -887,18 +884,8 @@ pub fn convert_model_with(
     }
     let vertex_normals: Vec<P3> = smooth
         .unwrap_or_default()
-        .iter()
-        .map(|n| {
-            let q = if opts.compact {
-                n.map(quantise_compact)
-            } else {
-                n.map(|c| quantise(opts.format, c))
-            };
-            for (a, b) in n.iter().zip(&q) {
-                normal_error = normal_error.max((a - b).abs());
-            }
-            q
-        })
+        .into_iter()
+        .map(&mut quantise_normal)
         .collect();
 
     // 7. Requirements over the views.

@@ -55,8 +55,8 @@ fn unit(v: P3) -> Option<P3> {
     (len > 0.0 && len.is_finite()).then(|| v.map(|c| c / len))
 }
 
-/// Newell's normal of a polygon, unit length (`None`: zero area).
-fn face_normal(points: &[P3]) -> Option<P3> {
+/// Newell's normal of a polygon, not normalised (twice the area long for a planar one).
+pub(crate) fn newell(points: &[P3]) -> P3 {
     let mut n = [0.0; 3];
     for (k, p) in points.iter().enumerate() {
         let q = points[(k + 1) % points.len()];
@@ -64,7 +64,12 @@ fn face_normal(points: &[P3]) -> Option<P3> {
         n[1] += (p[2] - q[2]) * (p[0] + q[0]);
         n[2] += (p[0] - q[0]) * (p[1] + q[1]);
     }
-    unit(n)
+    n
+}
+
+/// Newell's normal of a polygon, unit length (`None`: zero area).
+fn face_normal(points: &[P3]) -> Option<P3> {
+    unit(newell(points))
 }
 
 /// The angle of a polygon at `at` between its neighbours `prev` and `next`, radians (0 when
