@@ -9,7 +9,7 @@
 //!   whose corners carry different normals is split into one vertex per normal.
 //! - **The faces around the vertex** ([`from_faces`]), with a **crease angle**: two faces that
 //!   share an edge are smooth across it when their normals are at most the crease angle apart,
-//!   else the edge is a crease and stays sharp. Around each vertex, the faces joined through
+//!   else the edge is a crease and stays sharp (as is an edge three or more faces share). Around each vertex, the faces joined through
 //!   smooth edges form a fan that shares one normal: the sum of the fan's unit face normals,
 //!   each weighted by the face's angle at the vertex (Thürmer & Wüthrich 1998: the result does
 //!   not depend on how a surface is cut into triangles), made unit length. A vertex with k
@@ -149,18 +149,16 @@ pub fn from_faces(positions: &[[f64; 3]], faces: &[&[u32]], crease_degrees: f64)
                 }
             }
         }
-        let mut keys: Vec<&u32> = by_neighbour.keys().collect();
-        keys.sort_unstable();
-        for w in keys {
-            let sharing = &by_neighbour[w];
-            for (i, &a) in sharing.iter().enumerate() {
-                for &b in &sharing[i + 1..] {
-                    let (na, nb) = (normals[list[a].0 as usize], normals[list[b].0 as usize]);
-                    if let (Some(na), Some(nb)) = (na, nb) {
-                        if dot(na, nb) >= cos_crease {
-                            let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
-                            parent[ra.max(rb)] = ra.min(rb);
-                        }
+        // An edge is smooth only between exactly two faces (a manifold edge): an edge that
+        // more faces share is a crease, which also keeps this linear in the corners whatever
+        // the file (the partition does not depend on the order the edges are visited in).
+        for sharing in by_neighbour.values() {
+            if let [a, b] = sharing[..] {
+                let (na, nb) = (normals[list[a].0 as usize], normals[list[b].0 as usize]);
+                if let (Some(na), Some(nb)) = (na, nb) {
+                    if dot(na, nb) >= cos_crease {
+                        let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+                        parent[ra.max(rb)] = ra.min(rb);
                     }
                 }
             }
@@ -365,6 +363,26 @@ mod tests {
             let close = |a: P3, b: P3| (0..3).all(|i| (a[i] - b[i]).abs() < 1e-12);
             assert!(close(*nrm, radial) || close(*nrm, axial), "{k}: {nrm:?}");
         }
+    }
+
+    /// Many faces on one edge (a non-manifold fan of flaps, all nearly coplanar): the edge is
+    /// a crease, so each flap keeps its own normal, and the work stays linear in the faces.
+    #[test]
+    fn an_edge_of_many_faces_is_a_crease() {
+        let n = 20_000u32;
+        let mut p = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]];
+        let mut tris = Vec::new();
+        for k in 0..n {
+            let a = k as f64 * 1e-6;
+            p.push([0.5, a.cos(), a.sin()]);
+            tris.push([0, 1, k + 2]);
+        }
+        let faces: Vec<&[u32]> = tris.iter().map(|t| &t[..]).collect();
+        let v = from_faces(&p, &faces, DEFAULT_CREASE_DEGREES);
+        assert_eq!(v.normals.len(), 3 * n as usize);
+        // Two flaps alone on the edge are smooth across it.
+        let v = from_faces(&p, &faces[..2], DEFAULT_CREASE_DEGREES);
+        assert_eq!(v.normals.len(), 4);
     }
 
     #[test]
