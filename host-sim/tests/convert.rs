@@ -412,6 +412,9 @@ fn smooth_emits_one_normal_per_vertex() {
     let want: Vec<String> = sharp.vertex_normals.iter().map(v3).collect();
     assert_eq!(block(&sharp.rust, "VERTEX_NORMALS"), want);
     assert_eq!(sharp.report.flash.normals, 12 * (6 + 24));
+    // Still one closed convex solid (its corners' copies share positions): culling alone.
+    assert!(flat.report.cull_only_ram.is_some());
+    assert_eq!(sharp.report.cull_only_ram, flat.report.cull_only_ram);
     let round = convert_model(
         &cube,
         &ConvertOptions {

@@ -824,8 +824,12 @@ pub fn convert_model_with(
         for (face, renumbered) in faces.iter_mut().zip(split.faces) {
             face.indices = renumbered;
         }
-        split.normals
+        (split.normals, split.source)
     });
+    let (smooth, unsplit) = match smooth {
+        Some((normals, source)) => (Some(normals), Some(source)),
+        None => (None, None),
+    };
     let index = IndexType::for_vertices(kept.len()).ok_or_else(|| {
         model_error(
             file,
@@ -969,10 +973,12 @@ pub fn convert_model_with(
         report,
         rust: String::new(),
     };
-    // Judged on the emitted values (the format's rounding), as the firmware will hold them.
+    // Judged on the emitted values (the format's rounding), as the firmware will hold them,
+    // with the copies smooth shading made of a vertex shared again: the same positions, the
+    // same solid (culling alone draws it exactly either way).
     let convex = match opts.format {
-        Format::Q16_16 => converted.with_mesh::<Q16_16, _>(crate::structure::closed_convex),
-        Format::F32 => converted.with_mesh::<f32, _>(crate::structure::closed_convex),
+        Format::Q16_16 => closed_convex_shared::<Q16_16>(&converted, unsplit.as_deref()),
+        Format::F32 => closed_convex_shared::<f32>(&converted, unsplit.as_deref()),
     };
     if convex == Some(true) {
         let (p, e) = (capacities.polygons as usize, capacities.edges as usize);
@@ -983,6 +989,37 @@ pub fn convert_model_with(
     }
     converted.rust = emit(&converted, &opts.name);
     Ok(converted)
+}
+
+/// [`crate::structure::closed_convex`] of the converted mesh in `N`, its vertices' copies
+/// (`unsplit[k]`: the vertex copy `k` was made of) shared again.
+fn closed_convex_shared<N: Scalar>(c: &Converted, unsplit: Option<&[u32]>) -> Option<bool> {
+    let Some(unsplit) = unsplit else {
+        return c.with_mesh::<N, _>(crate::structure::closed_convex);
+    };
+    let copies = c.vertices_in::<N>()?;
+    let mut shared =
+        vec![Vec3::<N>::default(); unsplit.iter().max().map_or(0, |&m| m as usize + 1)];
+    for (&to, v) in unsplit.iter().zip(copies) {
+        shared[to as usize] = v;
+    }
+    let faces: Vec<ConvertedFace> = c
+        .faces
+        .iter()
+        .map(|f| ConvertedFace {
+            indices: f
+                .indices
+                .iter()
+                .map(|&i| unsplit.get(i as usize).copied().unwrap_or(i))
+                .collect(),
+            ..f.clone()
+        })
+        .collect();
+    let normals = c.normals_in::<N>()?;
+    let faces = zrow_faces(&faces);
+    Some(crate::structure::closed_convex(&Mesh::with_normals(
+        &shared, &faces, &normals,
+    )))
 }
 
 /// `CullOnly::<N, W, P, E>::RAM_BYTES` at run-time capacities: linear in each (computed from
