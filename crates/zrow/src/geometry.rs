@@ -786,7 +786,7 @@ fn emit_clipped<N: Scalar, I: MeshIndex>(
     mesh: &Mesh<'_, N, I>,
     face: &Face<'_, I>,
     this: u32,
-    mv: &Prepared<N>,
+    mv: &Prepared<'_, N>,
     proj: &Projector<N>,
     cfg: &Config,
     color: impl FnOnce() -> Rgb565,

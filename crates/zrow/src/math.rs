@@ -157,12 +157,12 @@ pub struct Affine<N> {
 
 /// An [`Affine`] transform made ready to transform many points ([`Affine::prepare`]).
 #[derive(Clone, Copy, Debug)]
-pub struct Prepared<N> {
-    affine: Affine<N>,
-    halves: [[(N, N); 3]; 3],
+pub struct Prepared<'a, N: Scalar> {
+    affine: &'a Affine<N>,
+    halves: [N::RowHalves; 3],
 }
 
-impl<N: Scalar> Prepared<N> {
+impl<N: Scalar> Prepared<'_, N> {
     /// [`Affine::apply_checked_with`], the same bits.
     #[inline]
     pub fn apply_checked_with(&self, math: MathLib, p: Vec3<N>) -> Option<Vec3<N>> {
@@ -274,12 +274,10 @@ impl<N: Scalar> Affine<N> {
     /// The transform made ready for many points ([`Prepared::apply_checked_with`]: the same
     /// results as [`Affine::apply_checked_with`]; f32 splits its entries for the compensated
     /// sums once here instead of once per point).
-    pub fn prepare(&self) -> Prepared<N> {
+    pub fn prepare(&self) -> Prepared<'_, N> {
         Prepared {
-            affine: *self,
-            halves: self
-                .m
-                .map(|r| [r[0].row_halves(), r[1].row_halves(), r[2].row_halves()]),
+            affine: self,
+            halves: [0, 1, 2].map(|k| N::row_halves(&self.m[k])),
         }
     }
     /// Applies the linear part only (to a direction).

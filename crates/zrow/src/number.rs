@@ -168,27 +168,19 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
         let _ = plain;
         Self::affine_row(row, p)
     }
-    /// A transform entry made ready for [`Scalar::affine_row_halved`]: f32's Veltkamp halves
-    /// (split once per transform, not once per point); the exact formats need nothing but the
-    /// value.
-    #[inline]
-    fn row_halves(self) -> (Self, Self) {
-        (self, Self::ZERO)
-    }
-    /// [`Scalar::affine_row_as`] with the row's first three entries' [`Scalar::row_halves`]
-    /// given: the same result, without splitting the entries again. (Out of line where not
-    /// overridden, the exact formats: inlined three times a vertex it would cost a
-    /// Q16.16 firmware 1.2 KB of flash for 1 % fewer instructions.)
-    #[inline(never)]
+    /// What a transform row keeps ready for many points ([`crate::math::Affine::prepare`]):
+    /// in f32 the Veltkamp halves of its three linear entries, split once per transform
+    /// instead of once per point; the exact formats need nothing (`()`, no bytes).
+    type RowHalves: Copy + core::fmt::Debug;
+    /// [`Scalar::RowHalves`] of `row`.
+    fn row_halves(row: &[Self; 4]) -> Self::RowHalves;
+    /// [`Scalar::affine_row_as`] with `row`'s [`Scalar::row_halves`] given: the same result.
     fn affine_row_halved(
         row: &[Self; 4],
-        halves: &[(Self, Self); 3],
+        halves: &Self::RowHalves,
         p: [Self; 3],
         plain: bool,
-    ) -> Option<Self> {
-        let _ = halves;
-        Self::affine_row_as(row, p, plain)
-    }
+    ) -> Option<Self>;
     /// The direction of the face normal `(b − a) × (c − a)`, scaled by a power of two (f32: by
     /// the reciprocal of its largest component) so that its largest component lies in
     /// [1/2, 1]: a direction with the format's full precision, for lighting, without a
@@ -589,6 +581,20 @@ macro_rules! impl_fixed {
                 };
                 Some((x, y, z))
             }
+            type RowHalves = ();
+            #[inline]
+            fn row_halves(_: &[Self; 4]) {}
+            // Out of line: inlined three times a vertex, it cost a Q16.16 firmware 1.2 KB of
+            // flash for 1 % fewer instructions.
+            #[inline(never)]
+            fn affine_row_halved(
+                row: &[Self; 4],
+                _: &(),
+                p: [Self; 3],
+                plain: bool,
+            ) -> Option<Self> {
+                Self::affine_row_as(row, p, plain)
+            }
             #[inline]
             fn affine_row(row: &[Self; 4], p: [Self; 3]) -> Option<Self> {
                 let f = $t::FRAC_NBITS;
@@ -878,14 +884,15 @@ impl Scalar for f32 {
         let v = dot2::plain_row_f32(row, p);
         v.is_finite().then_some(v)
     }
+    type RowHalves = [(f32, f32); 3];
     #[inline]
-    fn row_halves(self) -> (Self, Self) {
-        dot2::halves_f32(self)
+    fn row_halves(row: &[Self; 4]) -> Self::RowHalves {
+        [0, 1, 2].map(|k| dot2::halves_f32(row[k]))
     }
     #[inline]
     fn affine_row_halved(
         row: &[Self; 4],
-        halves: &[(Self, Self); 3],
+        halves: &Self::RowHalves,
         p: [Self; 3],
         plain: bool,
     ) -> Option<Self> {
