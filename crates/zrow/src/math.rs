@@ -260,16 +260,11 @@ impl<N: Scalar> Affine<N> {
     /// [`Affine::apply_checked`] as accurate as `math` asks: [`MathLib::Libm`] exactly so,
     /// [`MathLib::Micromath`] with f32 rows summed plainly ([`Scalar::affine_row_as`]: within
     /// 3 units of the last place of the largest term, at about a fifth of the cost). Fixed
-    /// point sums exactly either way. Geometry transforms vertices with it.
+    /// point sums exactly either way. (Geometry transforms a mesh's vertices with
+    /// [`Affine::prepare`], the same results.)
     #[inline]
     pub fn apply_checked_with(&self, math: MathLib, p: Vec3<N>) -> Option<Vec3<N>> {
-        let plain = math == MathLib::Micromath;
-        let row = |r: &[N; 4]| N::affine_row_as(r, [p.x, p.y, p.z], plain);
-        Some(Vec3::new(
-            row(&self.m[0])?,
-            row(&self.m[1])?,
-            row(&self.m[2])?,
-        ))
+        self.prepare().apply_checked_with(math, p)
     }
     /// The transform made ready for many points ([`Prepared::apply_checked_with`]: the same
     /// results as [`Affine::apply_checked_with`]; f32 splits its entries for the compensated

@@ -887,7 +887,7 @@ impl Scalar for f32 {
     type RowHalves = [(f32, f32); 3];
     #[inline]
     fn row_halves(row: &[Self; 4]) -> Self::RowHalves {
-        [0, 1, 2].map(|k| dot2::halves_f32(row[k]))
+        [0, 1, 2].map(|k| dot2::split(row[k]))
     }
     #[inline]
     fn affine_row_halved(

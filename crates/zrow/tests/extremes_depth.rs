@@ -583,14 +583,18 @@ fn apply_errors<N: Scalar>() -> (f64, f64) {
     (fits, all)
 }
 
-/// `Affine::prepare` (f32's entries split once per transform) gives the bits of
-/// `Affine::apply_checked_with`, with either maths library.
+/// `Affine::prepare` (f32's entries split once per transform) gives the bits of each row summed
+/// from the entries themselves (`Scalar::affine_row_as`), with either maths library.
 fn same_when_prepared<N: Scalar>(a: &Affine<N>, p: Vec3<N>) {
     let bits = |v: Option<Vec3<N>>| v.map(|v| [v.x, v.y, v.z].map(|c| c.to_f64().to_bits()));
     for math in [MathLib::Libm, MathLib::Micromath] {
+        // The unprepared reference: each row summed by `Scalar::affine_row_as` from the
+        // entries themselves.
+        let row = |r: &[N; 4]| N::affine_row_as(r, [p.x, p.y, p.z], math == MathLib::Micromath);
+        let unprepared = (|| Some(Vec3::new(row(&a.m[0])?, row(&a.m[1])?, row(&a.m[2])?)))();
         assert_eq!(
             bits(a.prepare().apply_checked_with(math, p)),
-            bits(a.apply_checked_with(math, p)),
+            bits(unprepared),
             "{} {math:?} {a:?} {p:?}",
             N::NAME
         );

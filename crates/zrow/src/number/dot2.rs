@@ -19,7 +19,7 @@
 
 /// Veltkamp's splitting: `a = hi + lo` exactly, each half with at most 12 significant bits.
 #[inline(always)]
-fn split(a: f32) -> (f32, f32) {
+pub(crate) fn split(a: f32) -> (f32, f32) {
     let c = 4097.0 * a;
     let hi = c - (c - a);
     (hi, a - hi)
@@ -66,12 +66,6 @@ pub(crate) fn affine_row_halved_f32(row: &[f32; 4], halves: &[(f32, f32); 3], p:
         // The splitting overflowed (or the result is beyond the format): the plain sum.
         plain_row_f32(row, p)
     }
-}
-
-/// Veltkamp's halves of a transform entry, for [`affine_row_halved_f32`].
-#[inline]
-pub(crate) fn halves_f32(a: f32) -> (f32, f32) {
-    split(a)
 }
 
 /// The same row summed plainly: three products and three sums, each rounded.
