@@ -781,35 +781,18 @@ pub fn convert_model_with(
     // 5. Per-vertex normals, on request: vertices split where they need several.
     let smooth = opts.smooth.map(|crease| {
         let indices: Vec<&[u32]> = faces.iter().map(|f| &f.indices[..]).collect();
-        let given = !model.normals.is_empty()
-            && faces
-                .iter()
-                .zip(&corner_normals)
-                .all(|(f, n)| f.indices.len() == n.len());
-        let (split, from) = if given {
-            let corners: Vec<Vec<P3>> = corner_normals
-                .iter()
-                .map(|c| {
-                    c.iter()
-                        .map(|&n| {
-                            model
-                                .normals
-                                .get(n as usize)
-                                .map_or([0.0; 3], |n| n.map(f64::from))
-                        })
-                        .collect()
-                })
-                .collect();
-            let corners: Vec<&[P3]> = corners.iter().map(|c| &c[..]).collect();
-            (
-                crate::vertex_normals::from_corners(&indices, &corners),
-                "the file's normals (vn)".to_owned(),
-            )
+        let corners: Vec<&[u32]> = corner_normals.iter().map(|c| &c[..]).collect();
+        let (split, given) = crate::vertex_normals::from_file_or_faces(
+            &exact,
+            &indices,
+            &model.normals,
+            &corners,
+            crease,
+        );
+        let from = if given {
+            "the file's normals (vn)".to_owned()
         } else {
-            (
-                crate::vertex_normals::from_faces(&exact, &indices, crease),
-                format!("averaged from the faces, crease angle {crease}°"),
-            )
+            format!("averaged from the faces, crease angle {crease}°")
         };
         notes.push(format!(
             "{}smooth shading: vertex normals {from}; {} vertices become {} ({} copies where a \

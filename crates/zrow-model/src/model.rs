@@ -244,33 +244,16 @@ impl LoadedModel {
     /// several normals are split; the result renumbers the faces, in order.
     pub fn vertex_normals(&self, crease_degrees: f64) -> VertexNormals {
         let faces: Vec<&[u32]> = self.faces.iter().map(|f| &f.indices[..]).collect();
-        let given = !self.normals.is_empty()
-            && self
-                .faces
-                .iter()
-                .all(|f| f.normals.len() == f.indices.len());
-        if given {
-            let corners: Vec<Vec<[f64; 3]>> = self
-                .faces
-                .iter()
-                .map(|f| {
-                    f.normals
-                        .iter()
-                        .map(|&n| {
-                            self.normals
-                                .get(n as usize)
-                                .map_or([0.0; 3], |n| n.map(f64::from))
-                        })
-                        .collect()
-                })
-                .collect();
-            let corners: Vec<&[[f64; 3]]> = corners.iter().map(|c| &c[..]).collect();
-            vertex_normals::from_corners(&faces, &corners)
-        } else {
-            let positions: Vec<[f64; 3]> =
-                self.positions.iter().map(|p| p.map(f64::from)).collect();
-            vertex_normals::from_faces(&positions, &faces, crease_degrees)
-        }
+        let corners: Vec<&[u32]> = self.faces.iter().map(|f| &f.normals[..]).collect();
+        let positions: Vec<[f64; 3]> = self.positions.iter().map(|p| p.map(f64::from)).collect();
+        let (normals, _) = vertex_normals::from_file_or_faces(
+            &positions,
+            &faces,
+            &self.normals,
+            &corners,
+            crease_degrees,
+        );
+        normals
     }
 
     /// Where face number `face` (0-based, as zrow's errors count) came from.

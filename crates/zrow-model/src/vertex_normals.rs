@@ -276,6 +276,35 @@ pub fn from_corners(faces: &[&[u32]], corner_normals: &[&[[f64; 3]]]) -> VertexN
     out
 }
 
+/// A model's vertex normals: the file's own ([`from_corners`]) when every face corner has one
+/// (`corners[f][k]` indexes `normals`), else [`from_faces`] with `crease_degrees`; and whether
+/// they are the file's.
+pub fn from_file_or_faces(
+    positions: &[[f64; 3]],
+    faces: &[&[u32]],
+    normals: &[[f32; 3]],
+    corners: &[&[u32]],
+    crease_degrees: f64,
+) -> (VertexNormals, bool) {
+    let given = !normals.is_empty()
+        && faces.len() == corners.len()
+        && faces.iter().zip(corners).all(|(f, c)| f.len() == c.len());
+    if !given {
+        return (from_faces(positions, faces, crease_degrees), false);
+    }
+    let at = |n: u32| {
+        normals
+            .get(n as usize)
+            .map_or([0.0; 3], |n| n.map(f64::from))
+    };
+    let corners: Vec<Vec<P3>> = corners
+        .iter()
+        .map(|c| c.iter().map(|&n| at(n)).collect())
+        .collect();
+    let corners: Vec<&[P3]> = corners.iter().map(|c| &c[..]).collect();
+    (from_corners(faces, &corners), true)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
