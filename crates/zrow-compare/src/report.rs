@@ -48,7 +48,7 @@ impl SceneInfo {
                     &cfg,
                     &mut zrow::scene::VertexBuffer::new(&mut []),
                     &mut |poly| {
-                        if let Some(sp) = zrow::raster::setup(&poly.to_raster(), &cfg)? {
+                        if let Some(sp) = zrow::raster::setup(&poly.to_raster()?, &cfg)? {
                             let (y0, y1) = (sp.first_row as i32, sp.last_row as i32);
                             zrow::polygons::walk_edges(&sp.edges, bits, y0, y1, |y, xl, xr| {
                                 let (x0, x1) = (xl.clamp(0, SIZE as i32), xr.clamp(0, SIZE as i32));

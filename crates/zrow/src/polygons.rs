@@ -99,7 +99,7 @@ impl<N: Scalar, const P: usize, const E: usize> PolygonTable<N, P, E> {
         let (table, edge_table) = (&mut self.polys, &mut self.edges);
         let mut buf = VertexBuffer::new(&mut []);
         scene.polygons(&setup_cfg, &mut buf, &mut |poly| {
-            let poly = &poly.to_raster();
+            let poly = &poly.to_raster()?;
             let Some(sp) = setup(poly, &setup_cfg)? else {
                 return Ok(());
             };

@@ -180,7 +180,7 @@ pub fn requirements_with<N: Scalar>(
         let first_pass = base == 0;
         let mut buf = VertexBuffer::new(&mut *slots);
         scene.polygons(cfg, &mut buf, &mut |poly| {
-            if let Some(sp) = setup(&poly.to_raster(), cfg)? {
+            if let Some(sp) = setup(&poly.to_raster()?, cfg)? {
                 if first_pass {
                     req.polygons += 1;
                     req.edges += sp.edges.len() as u32;

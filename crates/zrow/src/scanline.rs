@@ -46,7 +46,7 @@ use crate::method::{FrameStats, Renderer};
 use crate::number::{DepthPlane, Scalar};
 use crate::raster::{
     canonical, fill_run, outline_triangle, outline_with_area, row_at_or_below, Config, Dda,
-    RasterVertex, MAX_POLYGON_VERTICES,
+    RasterVertex, MAX_POLYGON_VERTICES, MAX_VIEWPORT,
 };
 use crate::requirements::Requirements;
 use crate::scene::{Scene, VertexBuffer, INDEXED_CORNERS};
@@ -99,21 +99,46 @@ impl Slot for u32 {
     }
 }
 
-/// One polygon of the table: its corners in the vertex buffer, its colour and its first row
-/// (14 bytes with `u16` slots). Its last row is not kept: [`last_row_of`] finds it from its
-/// corners the twice it is needed (counting the active list, and, for a polygon of more than
-/// three corners, activating it).
+/// One polygon of the table: its corners in the vertex buffer, its colour, and, packed in 16
+/// bits, its first row, winding and corner count (12 bytes with `u16` slots). Its last row is
+/// not kept: [`last_row_of`] finds it from its corners the twice it is needed (counting the
+/// active list, and, for a polygon of more than three corners, activating it).
 #[derive(Clone, Copy, Debug)]
 struct Polygon<S> {
     /// Up to [`INDEXED_CORNERS`] corners as slots of the vertex buffer, from the top one;
     /// more are a run of consecutive slots from `corners[0]`.
     corners: [S; INDEXED_CORNERS],
-    /// How many corners.
-    len: u8,
-    /// Clockwise on the display (its right side runs forward from the top vertex).
-    clockwise: bool,
     color: Rgb565,
-    first_row: i16,
+    /// First row (bits 5.., below [`MAX_VIEWPORT`] = 2^11), clockwise on the display (bit 4:
+    /// its right side runs forward from the top vertex), corners − 3 (bits 0..4: 3 to
+    /// [`MAX_POLYGON_VERTICES`]).
+    packed: u16,
+}
+
+impl<S> Polygon<S> {
+    /// `packed` of a polygon: `len` in 3..=[`MAX_POLYGON_VERTICES`], `first_row` in
+    /// 0..[`MAX_VIEWPORT`] (the caller checks both).
+    const fn pack(first_row: i16, clockwise: bool, len: usize) -> u16 {
+        const {
+            assert!(MAX_VIEWPORT as u32 <= 1 << 11 && MAX_POLYGON_VERTICES - 3 < 16);
+        }
+        (first_row as u16) << 5 | (clockwise as u16) << 4 | (len as u16 - 3)
+    }
+    /// How many corners.
+    #[inline]
+    fn len(&self) -> usize {
+        (self.packed & 15) as usize + 3
+    }
+    /// Clockwise on the display (its right side runs forward from the top vertex).
+    #[inline]
+    fn clockwise(&self) -> bool {
+        self.packed & 16 != 0
+    }
+    /// The first row whose sample line it covers.
+    #[inline]
+    fn first_row(&self) -> i32 {
+        (self.packed >> 5) as i32
+    }
 }
 
 /// A polygon's corners in order, read from the vertex buffer.
@@ -147,7 +172,7 @@ impl Walk {
 
 impl<N: Copy, S: Slot> Ring<'_, N, S> {
     fn len(&self) -> usize {
-        self.polygon.len as usize
+        self.polygon.len()
     }
     #[inline]
     fn get(&self, k: usize) -> &RasterVertex<N> {
@@ -170,7 +195,7 @@ impl<N: Copy, S: Slot> Ring<'_, N, S> {
             *d = *self.get(k);
         }
         let mut out = [RasterVertex::default(); MAX_POLYGON_VERTICES];
-        let n = canonical(&v[..n], self.polygon.clockwise, &mut out);
+        let n = canonical(&v[..n], self.polygon.clockwise(), &mut out);
         f(&out[..n])
     }
 }
@@ -509,6 +534,11 @@ impl<
                 };
                 (o, corners)
             } else {
+                if n > MAX_POLYGON_VERTICES {
+                    // More than clipping makes: a scene of its own sent it (and the table
+                    // packs the count in 4 bits).
+                    return Err(Error::TooManyVertices { face: poly.face });
+                }
                 let Some(o) = outline_with_area(n, at, poly.area2, cfg, poly.face)? else {
                     return Ok(());
                 };
@@ -528,10 +558,8 @@ impl<
             if poly.cached && table.len() < P {
                 let _ = table.push(Polygon {
                     corners,
-                    len: n as u8,
-                    clockwise: o.clockwise,
                     color: poly.color,
-                    first_row: o.first_row,
+                    packed: Polygon::<S>::pack(o.first_row, o.clockwise, n),
                 });
                 if counted {
                     let (first, after) = (o.first_row as usize, o.last_row as usize + 1);
@@ -571,7 +599,7 @@ impl<
     fn bucket(&mut self, cfg: &Config) {
         let height = cfg.height as usize;
         let (polygons, order) = (&self.polygons, &mut self.order);
-        let first = |p: &Polygon<S>| p.first_row as usize;
+        let first = |p: &Polygon<S>| p.first_row() as usize;
         order.clear();
         if height > W {
             order.extend(0..polygons.len() as u16);
@@ -630,7 +658,7 @@ impl<
                     vertices: &self.vertices,
                     polygon: p,
                 };
-                let (first, last) = (p.first_row as usize, last_row_of(&ring, cfg) as usize);
+                let (first, last) = (p.first_row() as usize, last_row_of(&ring, cfg) as usize);
                 if first < base {
                     running += (last >= base) as u16;
                 } else if first < base + len {
@@ -675,7 +703,7 @@ impl<
         for y in 0..cfg.height as i32 {
             // Polygons whose first row this is enter the active list.
             while let Some(&i) = self.order.get(cursor) {
-                if self.polygons[i as usize].first_row as i32 != y {
+                if self.polygons[i as usize].first_row() != y {
                     break;
                 }
                 cursor += 1;
@@ -736,12 +764,12 @@ impl<
         };
         // Clockwise on the display: forward from the top runs down the right side.
         let walks = if ring.len() == 3 {
-            triangle_walks(&ring, p.clockwise, y, cfg)
+            triangle_walks(&ring, p.clockwise(), y, cfg)
         } else {
             let top = top_of(&ring) as u8;
             (
-                walk_from(ring, top, !p.clockwise, y, cfg),
-                walk_from(ring, top, p.clockwise, y, cfg),
+                walk_from(ring, top, !p.clockwise(), y, cfg),
+                walk_from(ring, top, p.clockwise(), y, cfg),
             )
         };
         let (Some(left), Some(right)) = walks else {
@@ -1373,7 +1401,7 @@ fn next_edge<N: Copy, S: Slot>(
     };
     let w = if right { &mut a.right } else { &mut a.left };
     // Clockwise on the display: forward from the top runs down the right side.
-    if let Some(next) = walk_from(ring, w.at, right == p.clockwise, y, cfg) {
+    if let Some(next) = walk_from(ring, w.at, right == p.clockwise(), y, cfg) {
         *w = next;
         *edges += 1;
     }
@@ -1630,6 +1658,7 @@ fn last_row_of<N: Copy, S: Slot>(ring: &Ring<'_, N, S>, cfg: &Config) -> i32 {
 
 /// The top-left vertex of a polygon (least y, then least x): where both its sides start.
 /// A polygon of up to [`INDEXED_CORNERS`] corners is recorded from it ([`top_first`]).
+#[inline]
 fn top_of<N: Copy, S: Slot>(ring: &Ring<'_, N, S>) -> usize {
     if ring.len() <= INDEXED_CORNERS {
         return 0;
@@ -1682,13 +1711,13 @@ fn top_first<'a, S: Slot, N: 'a>(
 /// vertex, clockwise on the display), so the same polygon always gets the same bits.
 fn plane_of<N: Scalar, S: Slot>(ring: &Ring<'_, N, S>, s: u32) -> Option<DepthPlane<N>> {
     if ring.len() == 3 {
-        let top = top_of(ring);
-        let (f, g) = if ring.polygon.clockwise {
+        // Recorded from its top-left corner ([`top_of`] is 0).
+        let (f, g) = if ring.polygon.clockwise() {
             (1, 2)
         } else {
             (2, 1)
         };
-        let v = |k: usize| *ring.get((top + k) % 3);
+        let v = |k: usize| *ring.get(k);
         N::depth_plane(&[v(0), v(f), v(g)], s)
     } else {
         ring.ordered(|v| N::depth_plane(v, s))

@@ -731,19 +731,22 @@ impl<N: Copy> Polygon<'_, N> {
     pub fn vertex(&self, k: usize) -> RasterVertex<N> {
         self.vertices[self.corners[k] as usize]
     }
-    /// Its corners gathered into a [`RasterPolygon`] (a copy).
-    pub fn to_raster(&self) -> RasterPolygon<N> {
+    /// Its corners gathered into a [`RasterPolygon`] (a copy), or, for more than
+    /// [`crate::raster::MAX_POLYGON_VERTICES`] corners (which geometry never makes: only a
+    /// [`Scene`] of one's own can), [`Error::TooManyVertices`].
+    pub fn to_raster(&self) -> Result<RasterPolygon<N>, Error> {
         let mut vertices = heapless::Vec::new();
         for k in 0..self.corners.len() {
-            // At most MAX_POLYGON_VERTICES corners: geometry clips to that.
-            let _ = vertices.push(self.vertex(k));
+            vertices
+                .push(self.vertex(k))
+                .map_err(|_| Error::TooManyVertices { face: self.face })?;
         }
-        RasterPolygon {
+        Ok(RasterPolygon {
             vertices,
             color: self.color,
             alpha: self.alpha,
             face: self.face,
-        }
+        })
     }
 }
 

@@ -79,7 +79,7 @@ impl<N: Scalar, const W: usize, const H: usize> ZBuffer<N, W, H> {
         let (depth, intensity) = (&mut self.depth, &mut self.intensity);
         let mut buf = VertexBuffer::new(&mut []);
         scene.polygons(cfg, &mut buf, &mut |poly| {
-            let Some(sp) = setup(&poly.to_raster(), cfg)? else {
+            let Some(sp) = setup(&poly.to_raster()?, cfg)? else {
                 return Ok(());
             };
             stats.polygons += 1;

@@ -432,3 +432,85 @@ fn bad_input_every_method<N: Scalar>() {
 fn e23_every_method_reports_bad_input_before_any_row() {
     for_formats!(bad_input_every_method);
 }
+
+/// A scene of one's own that hands over, already projected, two overlapping convex polygons
+/// of `n` corners each (regular, on a 16×16 screen, the second nearer), so that the methods
+/// that keep polygons for the frame and those that compare planes all meet them.
+struct Gons(usize);
+
+impl<N: Scalar> zrow::Scene<N> for Gons {
+    fn polygons(
+        &self,
+        cfg: &Config,
+        vertices: &mut zrow::scene::VertexBuffer<'_, N>,
+        f: &mut dyn FnMut(&zrow::scene::Polygon<'_, N>) -> Result<(), Error>,
+    ) -> Result<(), Error> {
+        let s = cfg.subpixel_bits as u32;
+        for (k, z) in [(0usize, 5.0f32), (1, 2.0)] {
+            let ring: Vec<zrow::raster::RasterVertex<N>> = (0..self.0)
+                .map(|i| {
+                    let a = std::f64::consts::TAU * i as f64 / self.0 as f64;
+                    let (x, y) = (8.0 + k as f64 + 7.0 * a.cos(), 8.0 + 7.0 * a.sin());
+                    zrow::raster::RasterVertex {
+                        x: (x * (1 << s) as f64).round() as i32,
+                        y: (y * (1 << s) as f64).round() as i32,
+                        z: N::from_f32(z).unwrap(),
+                    }
+                })
+                .collect();
+            let start = vertices.push(&ring);
+            let corners: Vec<u32> = (0..self.0 as u32).map(|i| start.unwrap_or(0) + i).collect();
+            let area2 = zrow::raster::signed_area2(&ring);
+            let (cached, scratch);
+            let polygon = zrow::scene::Polygon {
+                vertices: if start.is_some() {
+                    cached = vertices.as_slice();
+                    cached
+                } else {
+                    scratch = &ring[..];
+                    scratch
+                },
+                corners: &corners,
+                cached: start.is_some(),
+                area2,
+                color: color_of(k),
+                alpha: 255,
+                face: k as u32,
+            };
+            f(&polygon)?;
+        }
+        Ok(())
+    }
+}
+
+// A polygon of more corners than clipping makes (17, from a scene of one's own): a typed
+// error before any row from every method, never a panic, never the polygon cut to its first
+// 16 corners; the largest one clipping makes (16) drawn, as the z-buffer draws it.
+fn too_many_corners<N: Scalar>() {
+    let cfg = Config::screen(16, 16);
+    let mut ms = methods::<N, 16, 16>();
+    let most = zrow::raster::MAX_POLYGON_VERTICES;
+    let (reference, _) = ms[1].outcome(&Gons(most), &cfg);
+    let reference = reference.map(|_| ());
+    assert_eq!(reference, Ok(()));
+    let (_, expected) = ms[1].outcome(&Gons(most), &cfg);
+    for m in &mut ms {
+        let (r, cap) = m.outcome(&Gons(most), &cfg);
+        assert!(r.is_ok(), "{} {}: {r:?}", N::NAME, m.name);
+        assert_eq!(cap.color, expected.color, "{} {}", N::NAME, m.name);
+        let (r, cap) = m.outcome(&Gons(most + 1), &cfg);
+        assert_eq!(
+            r.map(|_| ()),
+            Err(RenderError::Scene(Error::TooManyVertices { face: 0 })),
+            "{} {}",
+            N::NAME,
+            m.name
+        );
+        assert_eq!(cap.rows_received, 0, "{} {}", N::NAME, m.name);
+    }
+}
+
+#[test]
+fn a_polygon_of_too_many_corners_is_a_typed_error() {
+    for_formats!(too_many_corners);
+}
