@@ -507,6 +507,9 @@ impl<
         self.sorted.clear();
         let (mut polys, mut uncached) = (0u32, false);
         let table = &mut self.polygons;
+        // Where the frame's buffer lies: a polygon is kept by slot only if its vertices are
+        // that buffer (compared as addresses; a scene of its own might hand over others).
+        let frame_buffer = self.vertices.as_ptr();
         let mut buf = VertexBuffer::new(&mut self.vertices);
         // The active list's difference array (see `max_active`), filled as polygons enter the
         // table while their rows are at hand, in the colour row (free until the first row is
@@ -517,12 +520,24 @@ impl<
         diff.fill(count_of(0));
         scene.polygons(cfg, &mut buf, &mut |poly| {
             let n = poly.corners.len();
+            // Geometry's corners are always in range; a scene of its own may not be.
+            let out_of_range = || {
+                let len = poly.vertices.len();
+                let index = poly.corners.iter().find(|&&c| c as usize >= len);
+                index.map(|&index| Error::IndexOutOfRange {
+                    face: poly.face,
+                    index,
+                })
+            };
             let at = |k: usize| &poly.vertices[poly.corners[k] as usize];
             // The buffer has at most S::MAX_SLOTS slots.
             let slot = |k: usize| S::from_slot(poly.corners[k]);
-            let (o, corners) = if n == 3 {
-                let Some((o, top)) = outline_triangle([at(0), at(1), at(2)], poly.area2, cfg)
-                else {
+            let (o, corners) = if let [a, b, c] = *poly.corners {
+                let v = |i: u32| poly.vertices.get(i as usize);
+                let (Some(a), Some(b), Some(c)) = (v(a), v(b), v(c)) else {
+                    return Err(out_of_range().unwrap_or(Error::BadConfig));
+                };
+                let Some((o, top)) = outline_triangle([a, b, c], poly.area2, cfg) else {
                     return Ok(());
                 };
                 // Recorded from its top-left corner (the same ring).
@@ -539,6 +554,9 @@ impl<
                     // packs the count in 4 bits).
                     return Err(Error::TooManyVertices { face: poly.face });
                 }
+                if let Some(e) = out_of_range() {
+                    return Err(e);
+                }
                 let Some(o) = outline_with_area(n, at, poly.area2, cfg, poly.face)? else {
                     return Ok(());
                 };
@@ -553,9 +571,15 @@ impl<
                 (o, corners)
             };
             polys += 1;
+            // In the frame's buffer, and a polygon of more than INDEXED_CORNERS corners a run
+            // of consecutive slots, as `Polygon::cached` promises (else treated as scratch).
+            let cached = poly.cached
+                && core::ptr::eq(poly.vertices.as_ptr(), frame_buffer)
+                && (n <= INDEXED_CORNERS
+                    || (1..n).all(|k| poly.corners[k] == poly.corners[0].wrapping_add(k as u32)));
             // Past a capacity, keep counting so the error can say what the scene needs.
-            uncached |= !poly.cached;
-            if poly.cached && table.len() < P {
+            uncached |= !cached;
+            if cached && table.len() < P {
                 let _ = table.push(Polygon {
                     corners,
                     color: poly.color,

@@ -731,15 +731,22 @@ impl<N: Copy> Polygon<'_, N> {
     pub fn vertex(&self, k: usize) -> RasterVertex<N> {
         self.vertices[self.corners[k] as usize]
     }
-    /// Its corners gathered into a [`RasterPolygon`] (a copy), or, for more than
-    /// [`crate::raster::MAX_POLYGON_VERTICES`] corners (which geometry never makes: only a
-    /// [`Scene`] of one's own can), [`Error::TooManyVertices`].
+    /// Its corners gathered into a [`RasterPolygon`] (a copy); for more than
+    /// [`crate::raster::MAX_POLYGON_VERTICES`] corners [`Error::TooManyVertices`], for a
+    /// corner beyond `vertices` [`Error::IndexOutOfRange`] (geometry makes neither: only a
+    /// [`Scene`] of one's own can).
     pub fn to_raster(&self) -> Result<RasterPolygon<N>, Error> {
         let mut vertices = heapless::Vec::new();
-        for k in 0..self.corners.len() {
+        let face = self.face;
+        for &index in self.corners {
+            // Geometry's corners are always in range; a scene of its own may not be.
+            let v = self
+                .vertices
+                .get(index as usize)
+                .ok_or(Error::IndexOutOfRange { face, index })?;
             vertices
-                .push(self.vertex(k))
-                .map_err(|_| Error::TooManyVertices { face: self.face })?;
+                .push(*v)
+                .map_err(|_| Error::TooManyVertices { face })?;
         }
         Ok(RasterPolygon {
             vertices,

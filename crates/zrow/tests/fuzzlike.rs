@@ -434,9 +434,25 @@ fn e23_every_method_reports_bad_input_before_any_row() {
 }
 
 /// A scene of one's own that hands over, already projected, two overlapping convex polygons
-/// of `n` corners each (regular, on a 16×16 screen, the second nearer), so that the methods
-/// that keep polygons for the frame and those that compare planes all meet them.
-struct Gons(usize);
+/// of `corners` corners each (regular, on a 16×16 screen, the second nearer), so that the
+/// methods that keep polygons for the frame and those that compare planes all meet them;
+/// `past` is added to each polygon's second corner index (beyond the vertices when nonzero);
+/// `lie`: the polygons say they are in the frame's buffer (`cached`) but are not.
+struct Gons {
+    corners: usize,
+    past: u32,
+    lie: bool,
+}
+
+impl Gons {
+    fn new(corners: usize) -> Self {
+        Gons {
+            corners,
+            past: 0,
+            lie: false,
+        }
+    }
+}
 
 impl<N: Scalar> zrow::Scene<N> for Gons {
     fn polygons(
@@ -447,9 +463,9 @@ impl<N: Scalar> zrow::Scene<N> for Gons {
     ) -> Result<(), Error> {
         let s = cfg.subpixel_bits as u32;
         for (k, z) in [(0usize, 5.0f32), (1, 2.0)] {
-            let ring: Vec<zrow::raster::RasterVertex<N>> = (0..self.0)
+            let ring: Vec<zrow::raster::RasterVertex<N>> = (0..self.corners)
                 .map(|i| {
-                    let a = std::f64::consts::TAU * i as f64 / self.0 as f64;
+                    let a = std::f64::consts::TAU * i as f64 / self.corners as f64;
                     let (x, y) = (8.0 + k as f64 + 7.0 * a.cos(), 8.0 + 7.0 * a.sin());
                     zrow::raster::RasterVertex {
                         x: (x * (1 << s) as f64).round() as i32,
@@ -458,8 +474,11 @@ impl<N: Scalar> zrow::Scene<N> for Gons {
                     }
                 })
                 .collect();
-            let start = vertices.push(&ring);
-            let corners: Vec<u32> = (0..self.0 as u32).map(|i| start.unwrap_or(0) + i).collect();
+            let start = if self.lie { None } else { vertices.push(&ring) };
+            let mut corners: Vec<u32> = (0..self.corners as u32)
+                .map(|i| start.unwrap_or(0) + i)
+                .collect();
+            corners[1] += self.past;
             let area2 = zrow::raster::signed_area2(&ring);
             let (cached, scratch);
             let polygon = zrow::scene::Polygon {
@@ -471,7 +490,7 @@ impl<N: Scalar> zrow::Scene<N> for Gons {
                     scratch
                 },
                 corners: &corners,
-                cached: start.is_some(),
+                cached: start.is_some() || self.lie,
                 area2,
                 color: color_of(k),
                 alpha: 255,
@@ -490,15 +509,15 @@ fn too_many_corners<N: Scalar>() {
     let cfg = Config::screen(16, 16);
     let mut ms = methods::<N, 16, 16>();
     let most = zrow::raster::MAX_POLYGON_VERTICES;
-    let (reference, _) = ms[1].outcome(&Gons(most), &cfg);
+    let (reference, _) = ms[1].outcome(&Gons::new(most), &cfg);
     let reference = reference.map(|_| ());
     assert_eq!(reference, Ok(()));
-    let (_, expected) = ms[1].outcome(&Gons(most), &cfg);
+    let (_, expected) = ms[1].outcome(&Gons::new(most), &cfg);
     for m in &mut ms {
-        let (r, cap) = m.outcome(&Gons(most), &cfg);
+        let (r, cap) = m.outcome(&Gons::new(most), &cfg);
         assert!(r.is_ok(), "{} {}: {r:?}", N::NAME, m.name);
         assert_eq!(cap.color, expected.color, "{} {}", N::NAME, m.name);
-        let (r, cap) = m.outcome(&Gons(most + 1), &cfg);
+        let (r, cap) = m.outcome(&Gons::new(most + 1), &cfg);
         assert_eq!(
             r.map(|_| ()),
             Err(RenderError::Scene(Error::TooManyVertices { face: 0 })),
@@ -513,4 +532,56 @@ fn too_many_corners<N: Scalar>() {
 #[test]
 fn a_polygon_of_too_many_corners_is_a_typed_error() {
     for_formats!(too_many_corners);
+}
+
+// A scene of one's own whose corner lies beyond its vertices: a typed error before any row
+// from every method, never a panic; one that says its polygons are in the frame's buffer
+// when they are not: never a panic either (the scan-line method, which keeps polygons by
+// slot, refuses it; the others copy the corners and draw it as the honest scene).
+fn bad_corners<N: Scalar>() {
+    let cfg = Config::screen(16, 16);
+    let mut ms = methods::<N, 16, 16>();
+    for corners in [3, 4, 5, 9] {
+        let (_, honest) = ms[1].outcome(&Gons::new(corners), &cfg);
+        for m in &mut ms {
+            let past = Gons {
+                past: 1000,
+                ..Gons::new(corners)
+            };
+            let (r, cap) = m.outcome(&past, &cfg);
+            // Corner 1 of the first polygon: slot 1 + 1000.
+            assert_eq!(
+                r.map(|_| ()),
+                Err(RenderError::Scene(Error::IndexOutOfRange {
+                    face: 0,
+                    index: 1001
+                })),
+                "{} {} {corners}",
+                N::NAME,
+                m.name
+            );
+            assert_eq!(cap.rows_received, 0, "{} {}", N::NAME, m.name);
+            let lie = Gons {
+                lie: true,
+                ..Gons::new(corners)
+            };
+            let (r, cap) = m.outcome(&lie, &cfg);
+            if m.name == "scanline" {
+                assert!(
+                    matches!(r, Err(RenderError::Scene(Error::Capacity { .. }))),
+                    "{} {corners}: {r:?}",
+                    N::NAME
+                );
+                assert_eq!(cap.rows_received, 0);
+            } else {
+                assert!(r.is_ok(), "{} {} {corners}: {r:?}", N::NAME, m.name);
+                assert_eq!(cap.color, honest.color, "{} {} {corners}", N::NAME, m.name);
+            }
+        }
+    }
+}
+
+#[test]
+fn a_scene_of_its_own_with_bad_corners_is_a_typed_error() {
+    for_formats!(bad_corners);
 }
