@@ -22,7 +22,9 @@
 //!   per pair, in order, and `emu/run.sh` puts the k-th count into the k-th `instructions=?`;
 //! - `ram`: for `scanline`, `zrow::scanline::ram_bytes::<N>(&req)` with
 //!   `req = zrow::requirements(..)` measured here on the guest: the renderer's tables at
-//!   exactly the sizes this frame needs, plus its two rows. For the other methods, the
+//!   exactly the sizes this frame needs, plus its two rows — `ram_bytes_uncued` when the
+//!   frame does not use the affine depth cue (a renderer that draws it needs no per-edge
+//!   cue state: `scanline_for!(N, REQ, uncued)`, as the firmware builds). For the other methods, the
 //!   renderer's `RAM_BYTES` as built (capacities in `src/methods.rs`, sized for `foley2500`,
 //!   and `src/presets.rs`);
 //! - `hash`: FNV-1a 64 over every row's Rgb565 pixels as little-endian `u16`, top to bottom
@@ -164,10 +166,15 @@ struct Line {
     hash: u64,
 }
 
-/// The `ram=` figure: the scan-line's formula at the frame's requirements, else `RAM_BYTES`.
-fn ram<N: Format, R: Renderer<N>>(req: &zrow::Requirements) -> usize {
+/// The `ram=` figure: the scan-line's formula at the frame's requirements (with the affine
+/// cue's per-edge state only if the frame uses that cue), else `RAM_BYTES`.
+fn ram<N: Format, R: Renderer<N>>(req: &zrow::Requirements, affine_cue: bool) -> usize {
     if R::NAME == "scanline" {
-        zrow::scanline::ram_bytes::<N>(req)
+        if affine_cue {
+            zrow::scanline::ram_bytes::<N>(req)
+        } else {
+            zrow::scanline::ram_bytes_uncued::<N>(req)
+        }
     } else {
         R::RAM_BYTES
     }
@@ -181,6 +188,8 @@ fn frame<N: Format, R: Renderer<N>>(
     tris: usize,
 ) -> Result<Line, &'static str> {
     let req = zrow::requirements(scene, cfg).map_err(|_| "requirements failed")?;
+    let cue = zrow::shading::Cue::for_frame(scene, cfg).map_err(|_| "cue failed")?;
+    let affine_cue = cue.is_some_and(|c| c.interpolation == zrow::shading::Interpolation::Affine);
     let mut sink = FrameHash::default();
     let renderer = black_box(renderer);
     zrow_bench_start();
@@ -190,7 +199,7 @@ fn frame<N: Format, R: Renderer<N>>(
     result.map_err(|_| "render failed (capacity or scene error)")?;
     Ok(Line {
         tris,
-        ram: ram::<N, R>(&req),
+        ram: ram::<N, R>(&req, affine_cue),
         hash: sink.0,
     })
 }
