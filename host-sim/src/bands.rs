@@ -19,22 +19,23 @@ use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 use std::ops::Range;
 use zrow::geometry::ViewDepth;
 use zrow::raster::{RasterVertex, MAX_POLYGON_VERTICES};
-use zrow::scene::{Polygon, VertexBuffer};
+use zrow::scene::{IntensityPlane, Polygon, VertexBuffer};
 use zrow::{Config, RenderError, Renderer, Row, RowSink, Scalar, Scene};
 
 /// A frame's polygons after geometry, kept for drawing band by band.
 pub struct Projected<N> {
     vertices: Vec<RasterVertex<N>>,
-    polygons: Vec<Stored>,
+    polygons: Vec<Stored<N>>,
 }
 
 /// One polygon of [`Projected`]: its corners are `vertices[start..start + len]`.
 #[derive(Clone, Copy, Debug)]
-struct Stored {
+struct Stored<N> {
     start: u32,
     len: u8,
     alpha: u8,
     color: Rgb565,
+    intensity: Option<IntensityPlane<N>>,
     face: u32,
     area2: i64,
     /// The rows whose sample line (the pixel centres, `y + 0.5`) passes within one sub-pixel
@@ -75,6 +76,7 @@ impl<N: Scalar> Projected<N> {
                 len: p.corners.len() as u8,
                 alpha: p.alpha,
                 color: p.color,
+                intensity: p.intensity,
                 face: p.face,
                 area2: p.area2,
                 rows: (row(first(top)), row(last(bottom))),
@@ -112,7 +114,7 @@ pub fn cut<N>(
     let clamp = |r: i32| r.clamp(0, h as i32 - 1) as usize;
     // Polygons (and corners) whose first row is at or above r, and whose last row is above r.
     let (mut starts, mut ends) = (vec![(0usize, 0usize); h + 1], vec![(0usize, 0usize); h + 1]);
-    let reaches = |p: &Stored| p.rows.0 <= p.rows.1 && p.rows.1 >= 0 && p.rows.0 < h as i32;
+    let reaches = |p: &Stored<N>| p.rows.0 <= p.rows.1 && p.rows.1 >= 0 && p.rows.0 < h as i32;
     for p in projected.polygons.iter().filter(|p| reaches(p)) {
         let n = usize::from(p.len);
         let (a, b) = (clamp(p.rows.0), clamp(p.rows.1));
@@ -190,6 +192,7 @@ impl<N: Scalar, S: Scene<N> + ?Sized> Scene<N> for Band<'_, N, S> {
                 cached,
                 area2: p.area2,
                 color: p.color,
+                intensity: p.intensity,
                 alpha: p.alpha,
                 face: p.face,
             };

@@ -77,7 +77,7 @@ use crate::error::{Error, RenderError, Table};
 use crate::method::{FrameStats, Renderer};
 use crate::number::Scalar;
 use crate::polygons::{PolygonTable, Stored};
-use crate::raster::Config;
+use crate::raster::{color_at, Config};
 use crate::scene::Scene;
 use crate::sink::{Row, RowSink};
 use core::cmp::Ordering;
@@ -94,7 +94,7 @@ pub struct Fragment<N> {
     pub x: u16,
     /// The polygon's depth at the pixel centre.
     pub depth: N,
-    /// The polygon's colour.
+    /// The polygon's colour at the pixel (smooth shaded, if it is).
     pub color: Rgb565,
     /// The polygon's opacity (1..=254).
     pub alpha: u8,
@@ -304,11 +304,12 @@ fn opaque_row<N: Scalar, const P: usize, const E: usize>(
         let run = depth[x0 as usize..x1 as usize]
             .iter_mut()
             .zip(&mut intensity[x0 as usize..x1 as usize])
-            .zip(&mut owner[x0 as usize..x1 as usize]);
-        for ((d, c), o) in run {
+            .zip(&mut owner[x0 as usize..x1 as usize])
+            .zip(x0..x1);
+        for (((d, c), o), x) in run {
             if z < *d {
                 *d = z;
-                *c = p.color;
+                *c = color_at(p.color, p.intensity.as_ref(), x, y);
                 *o = i as u16; // i < P < NONE
             }
             z = z.step(p.plane.dzdx, 1);
@@ -345,7 +346,7 @@ fn each_fragment<N: Scalar, const P: usize, const E: usize>(
                 f(Fragment {
                     x: x as u16, // x < w <= MAX_VIEWPORT
                     depth: z,
-                    color: p.color,
+                    color: color_at(p.color, p.intensity.as_ref(), x, y),
                     alpha: p.alpha,
                     poly: i,
                 });

@@ -82,6 +82,14 @@ pub enum Error {
         /// Normals in the mesh.
         normals: u32,
     },
+    /// A mesh has `normals` per-vertex normals for its `vertices` vertices: give exactly one
+    /// per vertex, or none (then its faces are drawn flat).
+    VertexNormals {
+        /// Vertices in the mesh.
+        vertices: u32,
+        /// Vertex normals in the mesh.
+        normals: u32,
+    },
     /// A mesh of triangles ([`crate::Faces::Triangles`]) has `colors` colours for its `faces`
     /// triangles: give one per triangle, or one for all.
     Colors {
@@ -185,6 +193,10 @@ impl core::fmt::Display for Error {
             Error::Normals { faces, normals } => write!(
                 f,
                 "mesh has {normals} normals for {faces} faces: give one per face or none"
+            ),
+            Error::VertexNormals { vertices, normals } => write!(
+                f,
+                "mesh has {normals} vertex normals for {vertices} vertices: give one per vertex or none"
             ),
             Error::Colors { faces, colors } => write!(
                 f,

@@ -34,13 +34,15 @@ use crate::error::Error;
 use crate::math::{Affine, Prepared, Vec3};
 use crate::number::Scalar;
 use crate::raster::{
-    signed_area2, Config, Cull, RasterVertex, GUARD_BAND, MAX_FACE_VERTICES, MAX_POLYGON_VERTICES,
+    canonical, signed_area2, Config, Cull, RasterVertex, GUARD_BAND, MAX_FACE_VERTICES,
+    MAX_POLYGON_VERTICES,
 };
 use crate::scene::{
-    Face, Mesh, MeshIndex, ModelScene, Polygon, Projection, Scene, ScreenScene, VertexBuffer,
-    INDEXED_CORNERS,
+    Face, IntensityPlane, Mesh, MeshIndex, ModelScene, Polygon, Projection, Scene, ScreenScene,
+    VertexBuffer, INDEXED_CORNERS,
 };
-use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+use crate::shading::Shading;
+use embedded_graphics_core::pixelcolor::Rgb565;
 use heapless::Vec;
 
 /// Depth of the far plane in model mode (the near plane is at 0).
@@ -174,6 +176,29 @@ fn snap<N: Scalar>(p: &Vec3<N>, s: u32, face: u32) -> Result<RasterVertex<N>, Er
     })
 }
 
+/// Whether model mode lights vertices for smooth shading (the `gouraud` feature, on by
+/// default: about 2 KB of flash on a Cortex-M4, which a firmware that draws flat leaves out).
+const SMOOTH: bool = cfg!(feature = "gouraud");
+
+/// The intensity plane of a smooth-shaded polygon: through its snapped corners `v` (clockwise
+/// on the display if `clockwise`) at the levels `levels` their vertices were lit with, fitted
+/// as a depth plane is ([`Scalar::depth_plane`], the corners in [`canonical`] order, so the
+/// polygon gets the same bits whichever corner it was listed from).
+fn intensity_plane<N: Scalar>(
+    v: &[RasterVertex<N>],
+    levels: &[N],
+    clockwise: bool,
+    subpixel_bits: u32,
+) -> Option<IntensityPlane<N>> {
+    let mut lit = [RasterVertex::default(); MAX_POLYGON_VERTICES];
+    for ((d, p), &z) in lit.iter_mut().zip(v).zip(levels) {
+        *d = RasterVertex { x: p.x, y: p.y, z };
+    }
+    let mut ordered = [RasterVertex::default(); MAX_POLYGON_VERTICES];
+    let n = canonical(&lit[..v.len().min(levels.len())], clockwise, &mut ordered);
+    N::depth_plane(&ordered[..n], subpixel_bits)
+}
+
 /// 0, 1, 2, …: the corners of a polygon whose vertices are listed in order.
 const IN_ORDER: [u32; MAX_POLYGON_VERTICES] = {
     let mut a = [0u32; MAX_POLYGON_VERTICES];
@@ -186,8 +211,9 @@ const IN_ORDER: [u32; MAX_POLYGON_VERTICES] = {
 };
 
 /// A polygon as geometry hands it to the renderer.
-struct Out {
+struct Out<N> {
     color: Rgb565,
+    intensity: Option<IntensityPlane<N>>,
     alpha: u8,
     face: u32,
     area2: i64,
@@ -199,7 +225,7 @@ struct Out {
 fn emit_indexed<N: Scalar>(
     buf: &mut VertexBuffer<'_, N>,
     corners: &mut [u32],
-    out: Out,
+    out: Out<N>,
     f: &mut dyn FnMut(&Polygon<'_, N>) -> Result<(), Error>,
 ) -> Result<(), Error> {
     if corners.len() > INDEXED_CORNERS {
@@ -214,6 +240,7 @@ fn emit_indexed<N: Scalar>(
         corners,
         cached: true,
         color: out.color,
+        intensity: out.intensity,
         alpha: out.alpha,
         face: out.face,
         area2: out.area2,
@@ -225,7 +252,7 @@ fn emit_indexed<N: Scalar>(
 fn emit_new<N: Scalar>(
     buf: &mut VertexBuffer<'_, N>,
     v: &[RasterVertex<N>],
-    out: Out,
+    out: Out<N>,
     f: &mut dyn FnMut(&Polygon<'_, N>) -> Result<(), Error>,
 ) -> Result<(), Error> {
     let n = v.len();
@@ -248,6 +275,7 @@ fn emit_new<N: Scalar>(
         corners: &corners[..n],
         cached,
         color: out.color,
+        intensity: out.intensity,
         alpha: out.alpha,
         face: out.face,
         area2: out.area2,
@@ -260,7 +288,7 @@ fn emit_new<N: Scalar>(
 fn emit_unclaimed<N: Scalar>(
     buf: &mut VertexBuffer<'_, N>,
     v: &[RasterVertex<N>],
-    out: Out,
+    out: Out<N>,
     f: &mut dyn FnMut(&Polygon<'_, N>) -> Result<(), Error>,
 ) -> Result<(), Error> {
     if v.len() > INDEXED_CORNERS {
@@ -271,6 +299,7 @@ fn emit_unclaimed<N: Scalar>(
         corners: &IN_ORDER[..v.len()],
         cached: false,
         color: out.color,
+        intensity: out.intensity,
         alpha: out.alpha,
         face: out.face,
         area2: out.area2,
@@ -413,6 +442,7 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ScreenScene<'_, N, I> {
                 corners_of(face, mesh.vertices.len(), base, buf, &mut corners, no)?;
             let mut out = Out {
                 color: face.color,
+                intensity: None,
                 alpha: face.alpha,
                 face: no,
                 area2: 0,
@@ -461,9 +491,7 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ScreenScene<'_, N, I> {
 
 /// Scales a colour by an intensity in 0..=1.
 pub fn shade<N: Scalar>(c: Rgb565, intensity: N) -> Rgb565 {
-    let i = intensity.to_unit_u8() as u16;
-    let s = |ch: u8| ((ch as u16 * i + 127) / 255) as u8;
-    Rgb565::new(s(c.r()), s(c.g()), s(c.b()))
+    crate::raster::shade_level(c, intensity.to_unit_u8())
 }
 
 /// The matrix that takes a model-space normal to view space for the transform `mv`: the
@@ -505,6 +533,9 @@ struct ClipV<N> {
     x: N,
     y: N,
     w: N,
+    /// Smooth shading's intensity level at this point (0 when flat), interpolated by
+    /// clipping like the coordinates.
+    level: N,
 }
 
 /// Everything model mode needs to take a view-space point to snapped sub-pixels.
@@ -580,6 +611,7 @@ impl<N: Scalar> Projector<N> {
             x: v.x.mul(self.sx),
             y: v.y.mul(self.sy),
             w: v.z.neg(),
+            level: N::ZERO,
         }
     }
 
@@ -641,6 +673,10 @@ impl<N: Scalar> Projector<N> {
             x: N::lerp_clip(i.x, o.x, ci, co, b),
             y: N::lerp_clip(i.y, o.y, ci, co, b),
             w: N::lerp_clip(i.w, o.w, ci, co, b),
+            level: match SMOOTH {
+                true => N::lerp_clip(i.level, o.level, ci, co, b),
+                false => N::ZERO,
+            },
         };
         let (near, far) = (self.near, self.far);
         clip_plane(
@@ -697,6 +733,8 @@ struct Lighting<N> {
     model_light: Option<Vec3<N>>,
     ambient: N,
     math: crate::math::MathLib,
+    /// 255 in the format: an intensity's level.
+    levels: N,
 }
 
 impl<N: Scalar> Lighting<N> {
@@ -727,11 +765,22 @@ impl<N: Scalar> Lighting<N> {
             model_light,
             ambient,
             math,
+            levels: N::from_f32(255.0).unwrap_or(N::ONE),
         }
     }
 
     /// The colour of a face with model-space normal `normal` (any length; `None`: unlit).
     fn color(&self, base: Rgb565, normal: Option<[N; 3]>) -> Rgb565 {
+        shade(base, self.intensity(normal))
+    }
+
+    /// A smooth-shaded vertex's level: its intensity times 255.
+    fn level(&self, normal: Option<[N; 3]>) -> N {
+        self.intensity(normal).mul(self.levels)
+    }
+
+    /// `ambient + (1 − ambient)·max(0, n̂·l̂)` for model-space normal `normal`.
+    fn intensity(&self, normal: Option<[N; 3]>) -> N {
         let lambert = match (normal, self.model_light, self.light, self.to_view) {
             (Some(n), Some(lm), _, _) => self.lambert(n, [lm.x, lm.y, lm.z]),
             (Some([x, y, z]), None, Some(l), Some(m)) => {
@@ -741,7 +790,7 @@ impl<N: Scalar> Lighting<N> {
             _ => N::ZERO,
         };
         let a = self.ambient;
-        shade(base, a.add(N::ONE.sub(a).mul(lambert)))
+        a.add(N::ONE.sub(a).mul(lambert))
     }
 }
 
@@ -777,7 +826,8 @@ fn scaled_rotation<N: Scalar>(c: &Affine<N>, math: crate::math::MathLib) -> Opti
 
 /// A model face some of whose corners did not project (outside the view volume or the guard
 /// band): its corners again, clipped in clip space if they need it (or, with no room in the
-/// vertex buffer, projected here if they do not), then emitted with the colour `color` gives.
+/// vertex buffer, projected here if they do not), then emitted with the flat colour `color`
+/// gives, or smooth shaded if `levels` has its corners' levels (clipping interpolates them).
 /// Out of line: its clipping buffers (about a kilobyte on a 32-bit core) stay off the stack of
 /// the common path, where every corner projected.
 #[inline(never)]
@@ -790,11 +840,12 @@ fn emit_clipped<N: Scalar, I: MeshIndex>(
     proj: &Projector<N>,
     cfg: &Config,
     color: impl FnOnce() -> Rgb565,
+    levels: Option<&[N]>,
     buf: &mut VertexBuffer<'_, N>,
     f: &mut dyn FnMut(&Polygon<'_, N>) -> Result<(), Error>,
 ) -> Result<(), Error> {
     let mut clip: Poly<ClipV<N>> = Vec::new();
-    for &i in face.indices {
+    for (k, &i) in face.indices.iter().enumerate() {
         let p = mesh.vertices.get(i.index()).ok_or(Error::IndexOutOfRange {
             face: this,
             index: i.index() as u32,
@@ -803,7 +854,11 @@ fn emit_clipped<N: Scalar, I: MeshIndex>(
             .apply_checked_with(cfg.math, p)
             .filter(|v| v.x.is_finite() && v.y.is_finite() && v.z.is_finite())
             .ok_or(Error::NonFinite { face: this })?;
-        let _ = clip.push(proj.clip(v)); // fits: checked against MAX_FACE_VERTICES
+        let mut c = proj.clip(v);
+        if SMOOTH {
+            c.level = levels.and_then(|l| l.get(k).copied()).unwrap_or(N::ZERO);
+        }
+        let _ = clip.push(c); // fits: checked against MAX_FACE_VERTICES
     }
     let unclipped = clip.iter().all(|c| proj.inside(c));
     if !unclipped {
@@ -821,8 +876,21 @@ fn emit_clipped<N: Scalar, I: MeshIndex>(
     if dropped(area2, cfg) {
         return Ok(());
     }
+    let mut intensity = None;
+    if SMOOTH && levels.is_some() {
+        let mut lit = [N::ZERO; MAX_POLYGON_VERTICES];
+        for (d, c) in lit.iter_mut().zip(&clip) {
+            *d = c.level;
+        }
+        let s = cfg.subpixel_bits as u32;
+        intensity = intensity_plane(v, &lit[..v.len()], area2 > 0, s);
+    }
     let out = Out {
-        color: color(),
+        color: match intensity {
+            Some(_) => face.color,
+            None => color(),
+        },
+        intensity,
         alpha: face.alpha,
         face: this,
         area2,
@@ -841,6 +909,11 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
         buf: &mut VertexBuffer<'_, N>,
         f: &mut dyn FnMut(&Polygon<'_, N>) -> Result<(), Error>,
     ) -> Result<(), Error> {
+        if !SMOOTH && cfg.shading == Shading::Gouraud {
+            return Err(Error::Unsupported {
+                feature: "smooth shading (zrow built without `gouraud`)",
+            });
+        }
         let proj = Projector::new(self, cfg)?;
         let light = self.camera.view.apply_dir(self.light.direction).unit_max();
         let light = light.and_then(|l| {
@@ -882,6 +955,32 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
                 N::face_normal(v(0)?, v(1)?, v(2)?)
             };
             let count = mesh.vertices.len();
+            // Smooth: each corner lit with its vertex's normal, the face's own colour scaled
+            // per pixel (a plane that cannot be fitted leaves the face flat).
+            let smooth =
+                SMOOTH && cfg.shading == Shading::Gouraud && !mesh.vertex_normals.is_empty();
+            let level = |i: usize| {
+                let n = mesh.vertex_normals.get(i);
+                lighting.level(n.map(|n| [n.x, n.y, n.z]))
+            };
+            let s = cfg.subpixel_bits as u32;
+            let levels_of = |face: &Face<'_, I>| {
+                let mut levels = [N::ZERO; MAX_POLYGON_VERTICES];
+                for (d, i) in levels.iter_mut().zip(face.indices) {
+                    *d = level(i.index());
+                }
+                levels
+            };
+            // A smooth face's intensity plane through its snapped corners `v`.
+            let plane = |face: &Face<'_, I>, v: &[RasterVertex<N>], area2: i64| {
+                let n = v.len().min(face.indices.len());
+                intensity_plane(v, &levels_of(face)[..n], area2 > 0, s)
+            };
+            // Its colour: its own under an intensity plane, else lit flat.
+            let color = |k: usize, face: &Face<'_, I>, smooth: bool| match smooth {
+                true => face.color,
+                false => lighting.color(face.color, normal(k, face)),
+            };
             for (k, face) in mesh.faces.iter().enumerate() {
                 let face = &face;
                 let this = no;
@@ -906,8 +1005,13 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
                             if dropped(area2, cfg) {
                                 continue;
                             }
+                            let intensity = match smooth {
+                                true => plane(face, &[*v0, *v1, *v2], area2),
+                                false => None,
+                            };
                             let out = Out {
-                                color: lighting.color(face.color, normal(k, face)),
+                                color: color(k, face, intensity.is_some()),
+                                intensity,
                                 alpha: face.alpha,
                                 face: this,
                                 area2,
@@ -924,8 +1028,17 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
                     if dropped(area2, cfg) {
                         continue;
                     }
+                    let mut intensity = None;
+                    if smooth {
+                        let mut v = [RasterVertex::default(); MAX_POLYGON_VERTICES];
+                        for (d, &c) in v.iter_mut().zip(&corners[..n]) {
+                            *d = buf.as_slice().get(c as usize).copied().unwrap_or_default();
+                        }
+                        intensity = plane(face, &v[..n], area2);
+                    }
                     let out = Out {
-                        color: lighting.color(face.color, normal(k, face)),
+                        color: color(k, face, intensity.is_some()),
+                        intensity,
                         alpha: face.alpha,
                         face: this,
                         area2,
@@ -933,8 +1046,13 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
                     emit_indexed(buf, &mut corners[..n], out, f)?;
                     continue;
                 }
-                let color = || lighting.color(face.color, normal(k, face));
-                emit_clipped(mesh, face, this, &prepared, &proj, cfg, color, buf, f)?;
+                let levels = smooth.then(|| levels_of(face));
+                let n = face.indices.len().min(MAX_POLYGON_VERTICES);
+                let levels = levels.as_ref().map(|l| &l[..n]);
+                let color = || color(k, face, false);
+                emit_clipped(
+                    mesh, face, this, &prepared, &proj, cfg, color, levels, buf, f,
+                )?;
             }
         }
         Ok(())

@@ -119,8 +119,8 @@ pub use raster::{Config, Cull};
 pub use requirements::{requirements, requirements_with, Requirements};
 pub use scanline::Scanline;
 pub use scene::{
-    Camera, Face, Faces, FacesIter, Light, Mesh, MeshIndex, ModelScene, Object, Projection, Scene,
-    ScreenScene, Vectors, VectorsIter,
+    Camera, Face, Faces, FacesIter, IntensityPlane, Light, Mesh, MeshIndex, ModelScene, Object,
+    Projection, Scene, ScreenScene, Vectors, VectorsIter,
 };
 pub use sink::{DrawTargetSink, Drawing, FrameBuffer, Row, RowSink};
 pub use zbuffer::ZBuffer;
@@ -143,6 +143,12 @@ pub use zbuffer::ZBuffer;
 /// `scanline_for!(N, REQ, uncued)` is the same without the affine depth cue's per-edge state
 /// ([`scanline::Uncued`]: 20 bytes less per active slot in a 32-bit format), for a renderer
 /// that draws flat-shaded or with the perspective-correct cue only.
+///
+/// `scanline_for!(N, REQ, gouraud)` draws smooth shading
+/// ([`Shading::Gouraud`](shading::Shading::Gouraud)): uncued, with an intensity plane per
+/// polygon ([`scanline::ShadeStore`]; 20 bytes a polygon in a 32-bit format,
+/// [`scanline::ram_bytes_gouraud`]). The others refuse a smooth-shaded frame with
+/// [`Error::Unsupported`].
 #[macro_export]
 macro_rules! scanline_for {
     ($n:ty, $req:expr) => {
@@ -163,6 +169,18 @@ macro_rules! scanline_for {
             { $req.active_polygons as usize },
             u16,
             $crate::scanline::Uncued,
+        >
+    };
+    ($n:ty, $req:expr, gouraud) => {
+        $crate::Scanline<
+            $n,
+            { $req.width as usize },
+            { $req.vertices as usize },
+            { $req.polygons as usize },
+            { $req.active_polygons as usize },
+            u16,
+            $crate::scanline::Uncued,
+            [$crate::scene::IntensityPlane<$n>; $req.polygons as usize],
         >
     };
 }

@@ -202,6 +202,9 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     fn rsqrt(self) -> Self;
     /// Clamps to 0..=1 and scales to 0..=255 (truncating).
     fn to_unit_u8(self) -> u8;
+    /// Rounds to the nearest integer (halves up) and clamps to 0..=255: a Gouraud intensity
+    /// level ([`crate::scene::IntensityPlane`]); not a number gives 0.
+    fn to_level(self) -> u8;
 
     /// Rounds to the nearest multiple of 2^-`bits` and returns it as an integer count of
     /// sub-pixels (ties round up). `None` if the result does not fit an `i32`.
@@ -720,6 +723,12 @@ macro_rules! impl_fixed {
                 let b = self.to_bits().clamp(0, 1 << f) as u32;
                 ((b * 255) >> f) as u8
             }
+            #[inline]
+            fn to_level(self) -> u8 {
+                let f = $t::FRAC_NBITS;
+                let r = (self.to_bits() as i64 + (1 << (f - 1))) >> f;
+                r.clamp(0, 255) as u8
+            }
             fn snap(self, bits: u32) -> Option<i32> {
                 let bits = bits.min($t::FRAC_NBITS);
                 let shift = $t::FRAC_NBITS - bits;
@@ -959,6 +968,14 @@ impl Scalar for f32 {
             return 0;
         }
         (self.clamp(0.0, 1.0) * 255.0) as u8
+    }
+    #[inline]
+    fn to_level(self) -> u8 {
+        if self.is_nan() {
+            return 0;
+        }
+        // Truncation of a value in 0.5..=255.5 is the floor: round half up.
+        (self + 0.5).clamp(0.0, 255.0) as u8
     }
     fn snap(self, bits: u32) -> Option<i32> {
         if !self.is_finite() {

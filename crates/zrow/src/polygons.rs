@@ -20,8 +20,8 @@
 
 use crate::error::{Error, Table};
 use crate::number::{DepthPlane, Scalar};
-use crate::raster::{fill_run, setup, signed_area2, Config, Cull, Edge, Side};
-use crate::scene::{Scene, VertexBuffer};
+use crate::raster::{fill_run, paint_run, setup, signed_area2, Config, Cull, Edge, Side};
+use crate::scene::{IntensityPlane, Scene, VertexBuffer};
 use crate::sink::{Row, RowSink};
 use embedded_graphics_core::pixelcolor::Rgb565;
 use heapless::Vec;
@@ -33,6 +33,8 @@ pub struct Stored<N> {
     pub plane: DepthPlane<N>,
     /// Colour after shading.
     pub color: Rgb565,
+    /// Smooth shading's intensity, or `None` (flat).
+    pub intensity: Option<IntensityPlane<N>>,
     /// Opacity (255 = opaque).
     pub alpha: u8,
     /// Whether it is clockwise on the display (a back face, when meshes are culled).
@@ -99,6 +101,7 @@ impl<N: Scalar, const P: usize, const E: usize> PolygonTable<N, P, E> {
         let (table, edge_table) = (&mut self.polys, &mut self.edges);
         let mut buf = VertexBuffer::new(&mut []);
         scene.polygons(&setup_cfg, &mut buf, &mut |poly| {
+            let intensity = poly.intensity;
             let poly = &poly.to_raster()?;
             let Some(sp) = setup(poly, &setup_cfg)? else {
                 return Ok(());
@@ -128,6 +131,7 @@ impl<N: Scalar, const P: usize, const E: usize> PolygonTable<N, P, E> {
             let entry = Stored {
                 plane: sp.plane,
                 color: sp.color,
+                intensity,
                 alpha: poly.alpha,
                 back: signed_area2(&poly.vertices) > 0,
                 first_row: sp.first_row,
@@ -302,13 +306,17 @@ pub fn walk_edges(
     }
 }
 
-/// Paints `x0..x1` of a row (clamped to it) with one polygon: its colour, and its depth
-/// stepped one pixel at a time from the plane — the same bits as the scan-line method.
+/// Paints `x0..x1` of a row (clamped to it) with one polygon: its colour (smooth shaded if
+/// `shade` is its intensity plane), and its depth stepped one pixel at a time from the plane —
+/// the same bits as the scan-line method.
+#[allow(clippy::too_many_arguments)] // a polygon's plane, colour and shade, a row, a span
+#[inline]
 pub fn paint_span<N: Scalar>(
     depth: &mut [N],
     intensity: &mut [Rgb565],
     plane: &DepthPlane<N>,
     color: Rgb565,
+    shade: Option<&IntensityPlane<N>>,
     y: i32,
     x0: i32,
     x1: i32,
@@ -323,7 +331,13 @@ pub fn paint_span<N: Scalar>(
         *d = z;
         z = z.step(plane.dzdx, 1);
     }
-    intensity[x0 as usize..x1 as usize].fill(color);
+    paint_run(
+        &mut intensity[x0 as usize..x1 as usize],
+        color,
+        shade,
+        x0,
+        y,
+    );
 }
 
 /// Paints and sends every row, top to bottom, with no depth test: in each row the polygons of
@@ -356,14 +370,16 @@ pub fn paint_in_order<N: Scalar, const P: usize, const E: usize, K: RowSink<N>>(
             if (p.first_row as i32..=p.last_row as i32).contains(&y) {
                 let (xl, xr) = t.span(i, y);
                 if want_depth {
-                    paint_span(depth, intensity, &p.plane, p.color, y, xl, xr);
+                    let shade = p.intensity.as_ref();
+                    paint_span(depth, intensity, &p.plane, p.color, shade, y, xl, xr);
                 } else {
                     let (x0, x1) = (
                         xl.clamp(0, w as i32) as usize,
                         xr.clamp(0, w as i32) as usize,
                     );
                     if x0 < x1 {
-                        fill_run(&mut intensity[x0..x1], p.color);
+                        let (shade, x) = (p.intensity.as_ref(), x0 as i32);
+                        paint_run(&mut intensity[x0..x1], p.color, shade, x, y);
                     }
                 }
             }

@@ -21,6 +21,7 @@
 
 use crate::error::Error;
 use crate::number::{DepthPlane, Scalar};
+use crate::scene::IntensityPlane;
 use embedded_graphics_core::pixelcolor::Rgb565;
 
 /// Most vertices a polygon can have after clipping (input faces may have up to
@@ -528,6 +529,59 @@ pub(crate) fn fill_run(run: &mut [Rgb565], c: Rgb565) {
     }
     for p in chunks.into_remainder() {
         *p = c;
+    }
+}
+
+/// `c` scaled by a level in 0..=255, each channel rounded to nearest: the colour of a lit
+/// face (flat shading scales by its intensity once) or of one pixel of a smooth-shaded one.
+#[inline]
+pub fn shade_level(c: Rgb565, level: u8) -> Rgb565 {
+    use embedded_graphics_core::pixelcolor::RgbColor;
+    let i = level as u16;
+    let s = |ch: u8| ((ch as u16 * i + 127) / 255) as u8;
+    Rgb565::new(s(c.r()), s(c.g()), s(c.b()))
+}
+
+/// A polygon's colour at the centre of pixel (`i`, `j`): `color`, or, smooth shaded, `color`
+/// at the level its intensity plane has there.
+#[inline]
+pub fn color_at<N: Scalar>(
+    color: Rgb565,
+    intensity: Option<&IntensityPlane<N>>,
+    i: i32,
+    j: i32,
+) -> Rgb565 {
+    match intensity {
+        None => color,
+        Some(p) => shade_level(color, p.at(i, j).to_level()),
+    }
+}
+
+/// Paints `run`, columns `x0..` of row `y`, with a polygon's colour: one colour
+/// ([`fill_run`]), or, smooth shaded, its intensity plane stepped along the row from `x0` as
+/// depth is ([`DepthPlane::at`], then [`Scalar::step`] by one pixel).
+#[inline]
+pub(crate) fn paint_run<N: Scalar>(
+    run: &mut [Rgb565],
+    color: Rgb565,
+    intensity: Option<&IntensityPlane<N>>,
+    x0: i32,
+    y: i32,
+) {
+    match intensity {
+        None => fill_run(run, color),
+        Some(p) => shade_run(run, color, p, x0, y),
+    }
+}
+
+/// [`paint_run`]'s smooth case, out of line so that the flat one stays a fill wherever it is
+/// inlined.
+#[inline(never)]
+fn shade_run<N: Scalar>(run: &mut [Rgb565], color: Rgb565, p: &IntensityPlane<N>, x0: i32, y: i32) {
+    let mut v = p.at(x0, y);
+    for c in run {
+        *c = shade_level(color, v.to_level());
+        v = v.step(p.dzdx, 1);
     }
 }
 

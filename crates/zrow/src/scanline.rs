@@ -45,11 +45,11 @@ use crate::geometry::shade;
 use crate::method::{FrameStats, Renderer};
 use crate::number::{DepthPlane, Scalar};
 use crate::raster::{
-    canonical, fill_run, outline_triangle, outline_with_area, row_at_or_below, Config, Dda,
-    RasterVertex, MAX_POLYGON_VERTICES, MAX_VIEWPORT,
+    canonical, fill_run, outline_triangle, outline_with_area, paint_run, row_at_or_below, Config,
+    Dda, RasterVertex, MAX_POLYGON_VERTICES, MAX_VIEWPORT,
 };
 use crate::requirements::Requirements;
-use crate::scene::{Scene, VertexBuffer, INDEXED_CORNERS};
+use crate::scene::{IntensityPlane, Scene, VertexBuffer, INDEXED_CORNERS};
 use crate::shading::{Cue, Interpolation};
 use crate::sink::{Row, RowSink};
 use embedded_graphics_core::pixelcolor::raw::{RawData, RawU16};
@@ -73,6 +73,8 @@ mod sealed {
     impl Sealed for u32 {}
     impl<N, const K: usize> Sealed for [super::EdgeCue<N>; K] {}
     impl Sealed for super::Uncued {}
+    impl<N, const K: usize> Sealed for [crate::scene::IntensityPlane<N>; K] {}
+    impl Sealed for super::Flat {}
 }
 
 impl Slot for u16 {
@@ -295,6 +297,60 @@ impl<N> CueStore<N> for Uncued {
     }
 }
 
+/// Where a scan-line renderer keeps smooth shading's intensity planes (its `G` parameter):
+/// [`Flat`], none (the default: a frame with a smooth-shaded polygon is then
+/// [`Error::Unsupported`]), or `[IntensityPlane<N>; P]`, one per polygon of the table (20
+/// bytes a polygon in a 32-bit format): `scanline_for!(N, REQ, gouraud)`.
+pub trait ShadeStore<N>: sealed::Sealed {
+    /// The store with nothing set (all zero: a `static` renderer stays in `.bss`).
+    const EMPTY: Self;
+    /// Whether it keeps any plane.
+    const KEEPS: bool;
+    /// Polygon `k`'s plane.
+    #[doc(hidden)]
+    fn at(&self, k: usize) -> Option<&IntensityPlane<N>>;
+    /// Sets polygon `k`'s plane.
+    #[doc(hidden)]
+    fn set(&mut self, k: usize, plane: IntensityPlane<N>);
+}
+
+impl<N: Scalar, const K: usize> ShadeStore<N> for [IntensityPlane<N>; K] {
+    const EMPTY: Self = [IntensityPlane {
+        z_ref: N::ZERO,
+        dzdx: N::ZERO,
+        dzdy: N::ZERO,
+        i_ref: 0,
+        j_ref: 0,
+    }; K];
+    const KEEPS: bool = true;
+    #[inline]
+    fn at(&self, k: usize) -> Option<&IntensityPlane<N>> {
+        self.get(k)
+    }
+    #[inline]
+    fn set(&mut self, k: usize, plane: IntensityPlane<N>) {
+        if let Some(p) = self.get_mut(k) {
+            *p = plane;
+        }
+    }
+}
+
+/// A scan-line renderer that keeps no intensity plane ([`ShadeStore`]): it draws every
+/// polygon in one colour (flat shading, or either depth cue).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Flat;
+
+impl<N> ShadeStore<N> for Flat {
+    const EMPTY: Self = Flat;
+    const KEEPS: bool = false;
+    #[inline]
+    fn at(&self, _: usize) -> Option<&IntensityPlane<N>> {
+        None
+    }
+    #[inline]
+    fn set(&mut self, _: usize, _: IntensityPlane<N>) {}
+}
+
 /// The scan-line renderer.
 ///
 /// - `N`: number format ([`crate::Q16_16`], [`crate::Q24_8`] or `f32`);
@@ -304,7 +360,9 @@ impl<N> CueStore<N> for Uncued {
 /// - `P`: polygon table; `A`: active list (polygons crossing one row);
 /// - `S`: the slot number type ([`Slot`]: `u16` up to 65,536 vertex slots, else `u32`);
 /// - `C`: where the affine depth cue's per-edge state is kept ([`CueStore`]; [`Uncued`] for
-///   a renderer that never draws with it: 20 bytes less per active slot).
+///   a renderer that never draws with it: 20 bytes less per active slot);
+/// - `G`: where smooth shading's intensity planes are kept ([`ShadeStore`]; [`Flat`], the
+///   default, keeps none).
 ///
 /// Choose the capacities with [`crate::requirements()`]. All memory is in the struct:
 /// [`Scanline::RAM_BYTES`] is the whole of it.
@@ -316,6 +374,7 @@ pub struct Scanline<
     const A: usize,
     S: Slot = u16,
     C = [EdgeCue<N>; A],
+    G = Flat,
 > {
     /// The frame's vertex buffer: geometry writes every vertex here once, projected and
     /// snapped; polygons refer to it by slot.
@@ -327,6 +386,9 @@ pub struct Scanline<
     active: [Active<N>; A],
     /// Their affine depth cue, by slot (if the renderer keeps it).
     cues: C,
+    /// Smooth shading's intensity planes, by polygon (if the renderer keeps them; a flat
+    /// polygon's plane is level 255 everywhere).
+    shades: G,
     used: usize,
     /// Free slots of `active`.
     free: Vec<u16, A>,
@@ -387,7 +449,8 @@ impl<
         const A: usize,
         S: Slot,
         C: CueStore<N>,
-    > Default for Scanline<N, W, V, P, A, S, C>
+        G: ShadeStore<N>,
+    > Default for Scanline<N, W, V, P, A, S, C, G>
 {
     fn default() -> Self {
         Self::new()
@@ -402,7 +465,8 @@ impl<
         const A: usize,
         S: Slot,
         C: CueStore<N>,
-    > Scanline<N, W, V, P, A, S, C>
+        G: ShadeStore<N>,
+    > Scanline<N, W, V, P, A, S, C, G>
 {
     /// Bytes of RAM the renderer occupies (all its tables and row buffers).
     pub const RAM_BYTES: usize = core::mem::size_of::<Self>();
@@ -442,6 +506,7 @@ impl<
                 color: Rgb565::BLACK,
             }; A],
             cues: C::EMPTY,
+            shades: G::EMPTY,
             used: 0,
             free: Vec::new(),
             sorted: Vec::new(),
@@ -506,7 +571,8 @@ impl<
         self.free.clear();
         self.sorted.clear();
         let (mut polys, mut uncached) = (0u32, false);
-        let table = &mut self.polygons;
+        let (table, shades) = (&mut self.polygons, &mut self.shades);
+        let mut smooth = false;
         // Where the frame's buffer lies: a polygon is kept by slot only if its vertices are
         // that buffer (compared as addresses; a scene of its own might hand over others).
         let frame_buffer = self.vertices.as_ptr();
@@ -579,7 +645,19 @@ impl<
                     || (1..n).all(|k| poly.corners[k] == poly.corners[0].wrapping_add(k as u32)));
             // Past a capacity, keep counting so the error can say what the scene needs.
             uncached |= !cached;
+            smooth |= poly.intensity.is_some();
             if cached && table.len() < P {
+                if G::KEEPS {
+                    // A flat polygon: its colour at level 255, which is the colour itself.
+                    let flat = IntensityPlane {
+                        z_ref: N::from_f32(255.0).unwrap_or(N::ONE),
+                        dzdx: N::ZERO,
+                        dzdy: N::ZERO,
+                        i_ref: 0,
+                        j_ref: 0,
+                    };
+                    shades.set(table.len(), poly.intensity.unwrap_or(flat));
+                }
                 let _ = table.push(Polygon {
                     corners,
                     color: poly.color,
@@ -601,6 +679,11 @@ impl<
             needed,
             capacity: capacity as u32,
         };
+        if smooth && !G::KEEPS {
+            return Err(Error::Unsupported {
+                feature: "smooth shading (this Scanline's G is Flat: see scanline_for!)",
+            });
+        }
         if polys as usize > P {
             return Err(over(Table::Polygons, polys, P));
         }
@@ -1086,10 +1169,14 @@ impl<
             Some(i) => {
                 let f = &mut self.row.fresh;
                 (f.0, f.1) = (f.0.min(x0), f.1.max(x1));
-                fill_run(
-                    &mut self.intensity[x0 as usize..x1 as usize],
-                    self.active[i].color,
-                );
+                let run = &mut self.intensity[x0 as usize..x1 as usize];
+                let a = &self.active[i];
+                if G::KEEPS {
+                    let shade = self.shades.at(a.poly as usize);
+                    paint_run(run, a.color, shade, x0, self.row.y);
+                } else {
+                    fill_run(run, a.color);
+                }
             }
             None => {
                 // Only where the row before left something else.
@@ -1268,6 +1355,9 @@ impl<
                 b0 = b1;
             }
         }
+        if G::KEEPS {
+            return self.owners_to_shades(background);
+        }
         // Owners to colours; neighbours mostly share an owner, so the last lookup is kept.
         let (mut last, mut color) = (NOBODY, background);
         for c in owner.iter_mut() {
@@ -1280,6 +1370,27 @@ impl<
                 };
             }
             *c = color;
+        }
+    }
+
+    /// [`Self::resolve_by_depth`]'s owners to colours under smooth shading: each owner's
+    /// intensity plane at its pixels, stepped along the row from where a run of it starts.
+    fn owners_to_shades(&mut self, background: Rgb565) {
+        let raw = |c: Rgb565| RawU16::from(c).into_inner();
+        let y = self.row.y;
+        let width = (self.row.width.max(0) as usize).min(W);
+        let owner = &mut self.intensity[..width];
+        let mut x = 0;
+        while x < owner.len() {
+            let o = raw(owner[x]);
+            let same = owner[x..].iter().position(|&c| raw(c) != o);
+            let end = same.map_or(owner.len(), |n| x + n);
+            let run = &mut owner[x..end];
+            match self.polygons.get(o as usize) {
+                Some(p) => paint_run(run, p.color, self.shades.at(o as usize), x as i32, y),
+                None => fill_run(run, background), // NOBODY
+            }
+            x = end;
         }
     }
 
@@ -1318,7 +1429,8 @@ impl<
         const A: usize,
         S: Slot,
         C: CueStore<N>,
-    > Renderer<N> for Scanline<N, W, V, P, A, S, C>
+        G: ShadeStore<N>,
+    > Renderer<N> for Scanline<N, W, V, P, A, S, C, G>
 {
     const NAME: &'static str = "scanline";
     const RAM_BYTES: usize = Self::RAM_BYTES;
@@ -1820,6 +1932,13 @@ pub fn ram_bytes_uncued<N: Scalar>(req: &Requirements) -> usize {
         + req.active_polygons as usize
             * (size_of::<Active<N>>() + 2 * size_of::<u16>() + size_of::<u32>())
         + req.width as usize * (size_of::<N>() + size_of::<Rgb565>())
+}
+
+/// [`ram_bytes`] for a smooth-shading renderer (`Scanline<N, W, V, P, A, u16, Uncued,
+/// [IntensityPlane<N>; P]>`, `scanline_for!(N, REQ, gouraud)`): [`ram_bytes_uncued`] and an
+/// intensity plane per polygon.
+pub fn ram_bytes_gouraud<N: Scalar>(req: &Requirements) -> usize {
+    ram_bytes_uncued::<N>(req) + req.polygons as usize * core::mem::size_of::<IntensityPlane<N>>()
 }
 
 #[cfg(test)]

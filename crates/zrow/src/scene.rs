@@ -3,7 +3,7 @@
 
 use crate::error::Error;
 use crate::math::{Affine, Vec3};
-use crate::number::Scalar;
+use crate::number::{DepthPlane, Scalar};
 use crate::raster::{Config, RasterPolygon, RasterVertex};
 use embedded_graphics_core::pixelcolor::Rgb565;
 
@@ -368,6 +368,12 @@ pub struct Mesh<'a, N, I = u16> {
     /// and uses it for back-face culling and lighting instead of the cross product.
     /// Screen-space mode ignores it. Any other length is [`Error::Normals`].
     pub normals: Vectors<'a, N>,
+    /// Per-vertex model-space unit normals for smooth shading
+    /// ([`Shading::Gouraud`](crate::shading::Shading::Gouraud)), or empty (the faces are then
+    /// drawn flat under every shading). Otherwise exactly one per vertex (a vertex on a crease
+    /// is split into one per side, as the model converter's `--smooth` does); any other
+    /// length is [`Error::VertexNormals`]. Flat shading ignores them.
+    pub vertex_normals: Vectors<'a, N>,
 }
 
 impl<'a, N, I> Mesh<'a, N, I> {
@@ -377,6 +383,7 @@ impl<'a, N, I> Mesh<'a, N, I> {
             vertices: Vectors::Format(vertices),
             faces: Faces::List(faces),
             normals: Vectors::Format(&[]),
+            vertex_normals: Vectors::Format(&[]),
         }
     }
     /// A mesh of opaque triangles ([`Faces::Triangles`]: 6 bytes a triangle with `u16`
@@ -391,6 +398,7 @@ impl<'a, N, I> Mesh<'a, N, I> {
             vertices: Vectors::Format(vertices),
             faces: Faces::Triangles { indices, colors },
             normals: Vectors::Format(&[]),
+            vertex_normals: Vectors::Format(&[]),
         }
     }
     /// [`Mesh::triangles`] with one precomputed model-space unit normal per triangle (see
@@ -405,6 +413,7 @@ impl<'a, N, I> Mesh<'a, N, I> {
             vertices: Vectors::Format(vertices),
             faces: Faces::Triangles { indices, colors },
             normals: Vectors::Format(normals),
+            vertex_normals: Vectors::Format(&[]),
         }
     }
     /// A mesh with one precomputed model-space unit normal per face (see [`Mesh::normals`]).
@@ -417,6 +426,7 @@ impl<'a, N, I> Mesh<'a, N, I> {
             vertices: Vectors::Format(vertices),
             faces: Faces::List(faces),
             normals: Vectors::Format(normals),
+            vertex_normals: Vectors::Format(&[]),
         }
     }
     /// The same mesh with its positions from `vertices` (compact ones, say).
@@ -428,13 +438,28 @@ impl<'a, N, I> Mesh<'a, N, I> {
     pub const fn with_normal_vectors(self, normals: Vectors<'a, N>) -> Self {
         Mesh { normals, ..self }
     }
-    /// Checks that `normals` is empty or has one entry per face, and that triangles have one
-    /// colour each or one for all.
+    /// The same mesh with one model-space unit normal per vertex (see
+    /// [`Mesh::vertex_normals`]), for smooth shading.
+    pub const fn with_vertex_normals(self, vertex_normals: Vectors<'a, N>) -> Self {
+        Mesh {
+            vertex_normals,
+            ..self
+        }
+    }
+    /// Checks that `normals` is empty or has one entry per face, `vertex_normals` empty or
+    /// one per vertex, and that triangles have one colour each or one for all.
     pub(crate) fn check(&self) -> Result<(), Error> {
         let (faces, normals) = (self.faces.len(), self.normals.len());
         if normals != 0 && normals != faces {
             return Err(Error::Normals {
                 faces: faces as u32,
+                normals: normals as u32,
+            });
+        }
+        let (vertices, normals) = (self.vertices.len(), self.vertex_normals.len());
+        if normals != 0 && normals != vertices {
+            return Err(Error::VertexNormals {
+                vertices: vertices as u32,
                 normals: normals as u32,
             });
         }
@@ -717,13 +742,26 @@ pub struct Polygon<'a, N> {
     /// Twice its signed area on the sub-pixel grid, exact (positive: clockwise on the display),
     /// as [`crate::raster::signed_area2`] gives it: geometry has it from culling.
     pub area2: i64,
-    /// Its colour after shading.
+    /// Its colour after shading: under [`Shading::Gouraud`](crate::shading::Shading::Gouraud),
+    /// the face's own colour, which `intensity` then scales pixel by pixel.
     pub color: Rgb565,
+    /// Smooth shading's intensity over the polygon, or `None` (flat: `color` everywhere).
+    pub intensity: Option<IntensityPlane<N>>,
     /// Its opacity (255 = opaque), from [`Face::alpha`].
     pub alpha: u8,
     /// Index of the face in the scene (objects in order, faces in order; for errors).
     pub face: u32,
 }
+
+/// A smooth-shaded polygon's intensity: a plane over the screen like its depth
+/// ([`DepthPlane`], the same exact arithmetic: referenced at a pixel, stepped by exact
+/// increments, so every method gets the same bits at a pixel), whose value at a pixel centre
+/// is the **level** `0..=255` its colour is scaled by there ([`Scalar::to_level`], then
+/// [`crate::geometry::shade_level`]). Levels rather than a 0..=1 fraction keep 8 more bits
+/// of the gradient in Q24.8. Geometry fits it through the polygon's snapped corners and the
+/// intensities its vertices were lit with (Gouraud's interpolation; for a triangle exactly
+/// the linear interpolation of its three corners).
+pub type IntensityPlane<N> = DepthPlane<N>;
 
 impl<N: Copy> Polygon<'_, N> {
     /// Corner `k`.

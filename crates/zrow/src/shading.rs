@@ -36,6 +36,11 @@ pub enum Shading {
     Flat,
     /// Intensity falls with distance.
     DepthCue(DepthCue),
+    /// Smooth (Gouraud 1971; Foley & van Dam §16.2.4): each vertex lit with its own normal
+    /// ([`crate::Mesh::vertex_normals`]), the intensity interpolated linearly across each
+    /// polygon in screen space as an exact plane, like depth (see [`crate::scene::IntensityPlane`]). A mesh
+    /// without vertex normals is drawn flat. Every method draws it, with the same bits.
+    Gouraud,
 }
 
 /// Depth-cue parameters: the factor is 1 at w ≤ `near`, `floor` at w ≥ `far`, linear between.
@@ -64,7 +69,7 @@ impl Shading {
     /// Finite parameters, `near < far`, `floor` in 0..=1.
     pub(crate) fn is_valid(&self) -> bool {
         match *self {
-            Shading::Flat => true,
+            Shading::Flat | Shading::Gouraud => true,
             Shading::DepthCue(c) => {
                 c.near.is_finite()
                     && c.far.is_finite()

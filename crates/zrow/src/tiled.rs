@@ -88,7 +88,7 @@ use crate::error::RenderError;
 use crate::method::{FrameStats, Renderer};
 use crate::number::Scalar;
 use crate::polygons::PolygonTable;
-use crate::raster::Config;
+use crate::raster::{color_at, Config};
 use crate::scene::Scene;
 use crate::sink::{Row, RowSink};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
@@ -415,7 +415,7 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize>
                 match polys.get(o as usize) {
                     None => (*c, z) = (background, N::MAX),
                     Some(p) => {
-                        *c = p.color;
+                        *c = color_at(p.color, p.intensity.as_ref(), x as i32, y);
                         z = if o == last {
                             z.step(p.plane.dzdx, 1)
                         } else {

@@ -21,7 +21,7 @@ use crate::error::{Error, RenderError, Table};
 use crate::method::{FrameStats, Renderer};
 use crate::number::Scalar;
 use crate::polygons::walk_edges;
-use crate::raster::{setup, Config};
+use crate::raster::{color_at, setup, Config};
 use crate::scene::{Scene, VertexBuffer};
 use crate::sink::{Row, RowSink};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
@@ -89,13 +89,14 @@ impl<N: Scalar, const W: usize, const H: usize> ZBuffer<N, W, H> {
                 let (x0, x1) = (xl.max(0), xr.min(w as i32));
                 if x0 < x1 {
                     let (zrow, crow) = (&mut depth[y as usize], &mut intensity[y as usize]);
-                    let mut z = sp.plane.at(x0, y);
-                    for x in x0 as usize..x1 as usize {
-                        if z < zrow[x] {
-                            zrow[x] = z;
-                            crow[x] = sp.color;
+                    let z = sp.plane.at(x0, y);
+                    let (c, dzdx) = (sp.color, sp.plane.dzdx);
+                    // The loop twice: flat, one colour; smooth, the colour at each pixel.
+                    match poly.intensity.as_ref() {
+                        None => test_span(zrow, crow, z, dzdx, x0, x1, |_| c),
+                        Some(i) => {
+                            test_span(zrow, crow, z, dzdx, x0, x1, |x| color_at(c, Some(i), x, y))
                         }
-                        z = z.step(sp.plane.dzdx, 1);
                     }
                 }
                 true
@@ -129,5 +130,26 @@ impl<N: Scalar, const W: usize, const H: usize> Renderer<N> for ZBuffer<N, W, H>
         sink: &mut K,
     ) -> Result<FrameStats, RenderError<K::Error>> {
         ZBuffer::render(self, scene, cfg, sink)
+    }
+}
+
+/// Depth-tests columns `x0..x1` of a row (in range) against a polygon whose depth at `x0` is
+/// `z`, stepping `dzdx`: each pixel it is nearer at gets its depth and `color(x)`.
+#[inline(always)]
+fn test_span<N: Scalar>(
+    zrow: &mut [N],
+    crow: &mut [Rgb565],
+    mut z: N,
+    dzdx: N,
+    x0: i32,
+    x1: i32,
+    color: impl Fn(i32) -> Rgb565,
+) {
+    for x in x0 as usize..x1 as usize {
+        if z < zrow[x] {
+            zrow[x] = z;
+            crow[x] = color(x as i32);
+        }
+        z = z.step(dzdx, 1);
     }
 }

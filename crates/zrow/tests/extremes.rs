@@ -882,6 +882,7 @@ fn bad_input<N: Scalar>() {
             vertices: zrow::Vectors::Format(&v),
             faces: zrow::Faces::List(&[tri]),
             normals: zrow::Vectors::Format(&[]),
+            vertex_normals: zrow::Vectors::Format(&[]),
         },
     };
     let mut r = Box::new(Scanline::<N, 16, 12, 4, 2>::new());

@@ -493,6 +493,7 @@ impl<N: Scalar> zrow::Scene<N> for Gons {
                 cached: start.is_some() || self.lie,
                 area2,
                 color: color_of(k),
+                intensity: None,
                 alpha: 255,
                 face: k as u32,
             };
