@@ -9,7 +9,7 @@
 //!
 //! ```text
 //! zrow-sim render-model --model FILE [--yaw DEG] [--pitch DEG] [--distance D] [--size WxH]
-//!                       [--algo scanline] [--format q16.16|f32] --out OUT.png
+//!                       [--algo scanline] [--format q16.16|f32] [--smooth DEG] --out OUT.png
 //! ```
 //!
 //! and the converter (a model to const Rust data for flash, [`crate::convert`]):
@@ -42,7 +42,7 @@ usage:
                       c culling, q/Esc quit; without SDL or a display it writes zrow-demo.png
   zrow-sim render --screen SCENE.off --out OUT.png [--size WxH] [--algo NAME] [--format FMT]
   zrow-sim render-model --model FILE --out OUT.png [--yaw DEG] [--pitch DEG] [--distance D]
-                        [--size WxH] [--algo NAME] [--format FMT]
+                        [--size WxH] [--algo NAME] [--format FMT] [--smooth DEG]
 
   --screen FILE   OFF scene in screen space (x right, y down in pixels, z depth, smaller nearer)
   --out FILE      PNG to write (8-bit RGB, exactly WxH, background black)
@@ -57,6 +57,9 @@ usage:
   --yaw DEG       camera angle about the vertical axis, 0 = from the front (default 30)
   --pitch DEG     camera elevation, -89..=89 (default 20)
   --distance D    camera distance from the origin, 0 < D < 20 (default 3)
+  --smooth DEG    smooth (Gouraud) shading: each vertex lit with its own normal (the OBJ's vn,
+                  else averaged from the faces within DEG degrees, 0..=180; 45 keeps a cube's
+                  edges sharp), the intensity interpolated across each face; default flat
 
   zrow-sim convert --model FILE --out FILE.rs [--format FMT] [--size WxH] [--distance D]
                    [--name NAME] [--checks N] [--strict] [--compact] [--smooth DEG]
@@ -149,6 +152,9 @@ pub struct RenderModelArgs {
     pub format: Format,
     /// Where the camera is.
     pub view: View,
+    /// Smooth (Gouraud) shading with vertex normals within this crease angle in degrees
+    /// (`--smooth DEG`), or flat.
+    pub smooth: Option<f64>,
 }
 
 fn usage(msg: impl Into<String>) -> SimError {
@@ -173,6 +179,7 @@ const RENDER_MODEL_FLAGS: &[&str] = &[
     "--yaw",
     "--pitch",
     "--distance",
+    "--smooth",
 ];
 
 const CONVERT_FLAGS: &[&str] = &[
@@ -441,6 +448,7 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
         algo,
         format,
         view,
+        smooth,
     })))
 }
 
@@ -542,7 +550,10 @@ pub fn render_screen(args: &ScreenArgs) -> Result<(), SimError> {
 /// Runs `render-model`: loads the model, renders the view, writes the PNG.
 pub fn render_model(args: &RenderModelArgs) -> Result<(), SimError> {
     let out = Output::open(&args.out)?;
-    let model = load_model(&args.model)?;
+    let mut model = load_model(&args.model)?;
+    if let Some(crease) = args.smooth {
+        model = model.smoothed(crease);
+    }
     let image = crate::model_render::render_model_image(
         &model,
         &args.view,
@@ -618,6 +629,18 @@ mod tests {
             ..View::default()
         };
         assert_eq!(got.view, want);
+        assert_eq!(got.smooth, None);
+        let a = [
+            "render-model",
+            "--model=m.obj",
+            "--out=m.png",
+            "--smooth",
+            "30",
+        ];
+        let Command::Render(RenderArgs::Model(got)) = parse(&a).unwrap() else {
+            panic!()
+        };
+        assert_eq!(got.smooth, Some(30.0));
     }
 
     #[test]
@@ -722,6 +745,10 @@ mod tests {
                 "bad view: pitch 95",
             ),
             (&["render-model", "--yaw", "north"], "bad --yaw `north`"),
+            (
+                &["render-model", "--smooth", "200"],
+                "bad --smooth `200`: expected a crease angle in degrees, 0..=180",
+            ),
             (
                 &["render-model", "--distance", "1", "--distance", "2"],
                 "--distance given twice",

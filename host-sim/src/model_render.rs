@@ -6,7 +6,9 @@
 //! pitch and looks at the origin (y up), perspective with a [`FOV_Y_DEG`] vertical field of
 //! view, near plane [`NEAR`], far plane [`FAR`]. The light is directional and fixed in the
 //! world, coming from the upper front right ([`LIGHT_DIRECTION`]), with ambient [`AMBIENT`].
-//! Faces are flat shaded and back faces culled ([`zrow::Config::model`]).
+//! Faces are flat shaded, or smooth shaded ([`zrow::shading::Shading::Gouraud`]) when the
+//! model has vertex normals ([`LoadedModel::smoothed`]), and back faces culled
+//! ([`zrow::Config::model`]).
 //!
 //! Rendering goes the same way as [`crate::render`]: [`zrow::requirements()`] measures the view
 //! first, a model that needs more than the host capacities is an error naming the capacity
@@ -94,7 +96,10 @@ pub(crate) fn with_scene<N: Scalar, R>(
             N::NAME
         ))
     })?;
-    let cfg = Config::model(width, height);
+    let mut cfg = Config::model(width, height);
+    if !model.vertex_normals.is_empty() {
+        cfg.shading = zrow::shading::Shading::Gouraud;
+    }
     model.with_mesh::<N, _>(|mesh| {
         let objects = [Object {
             mesh,

@@ -32,8 +32,18 @@ pub const HOST_PIECES: usize = 65000;
 /// Deepest BSP tree the host builds.
 pub const HOST_BSP_DEPTH: usize = 16384;
 
-/// The scan-line renderer at the host's capacities.
-pub type HostScanline<N> = Scanline<N, HOST_WIDTH, HOST_EDGES, HOST_POLYGONS, HOST_ACTIVE>;
+/// The scan-line renderer at the host's capacities, drawing every shading (the affine cue's
+/// per-edge state, an intensity plane per polygon).
+pub type HostScanline<N> = Scanline<
+    N,
+    HOST_WIDTH,
+    HOST_EDGES,
+    HOST_POLYGONS,
+    HOST_ACTIVE,
+    u16,
+    [zrow::scanline::EdgeCue<N>; HOST_ACTIVE],
+    [zrow::IntensityPlane<N>; HOST_POLYGONS],
+>;
 /// The z-buffer at the host's largest frame.
 pub type HostZBuffer<N> = zrow::ZBuffer<N, HOST_WIDTH, HOST_WIDTH>;
 /// Depth-sort at the host's capacities.

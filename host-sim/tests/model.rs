@@ -2,7 +2,7 @@
 //! malformed or oversized model gets a one-line error naming the file and where.
 //!
 //! Golden frames: `host-sim/tests/golden/model_NAME.FORMAT.png`, each demo model at 240x240
-//! from the default view. To accept a deliberate change, re-bless and review the new PNGs:
+//! from the default view, and `model_NAME.smooth.FORMAT.png` smooth shaded (`--smooth 45`). To accept a deliberate change, re-bless and review the new PNGs:
 //!
 //! ```text
 //! ZROW_BLESS=1 CARGO_TARGET_DIR=/work/target-model cargo test -p zrow-sim --test model
@@ -367,11 +367,20 @@ fn a_model_beyond_the_host_capacities_names_the_capacity_and_its_need() {
 // ---------------------------------------------------------------------------------------------
 // Golden frames
 
-fn check_golden(name: &str, format: Format, bless: bool) -> Result<(), String> {
+/// `smooth`: drawn with smooth shading (`--smooth 45`), its frame `model_NAME.smooth.FORMAT.png`.
+fn check_golden(name: &str, format: Format, smooth: bool, bless: bool) -> Result<(), String> {
     let stem = name.split('.').next().unwrap();
+    let stem = if smooth {
+        format!("{stem}.smooth")
+    } else {
+        stem.to_owned()
+    };
     let reference = golden_dir().join(format!("model_{stem}.{}.png", format.name()));
     let actual_path = golden_dir().join(format!("model_{stem}.{}.actual.png", format.name()));
-    let m = model::load(&models_dir().join(name)).map_err(|e| e.to_string())?;
+    let mut m = model::load(&models_dir().join(name)).map_err(|e| e.to_string())?;
+    if smooth {
+        m = m.smoothed(45.0);
+    }
     let image = render_model_image(&m, &View::default(), SIZE, SIZE, Algo::Scanline, format)
         .map_err(|e| e.to_string())?;
     support::compare_golden(&image, &reference, &actual_path, bless)
@@ -383,8 +392,10 @@ fn golden_model_frames() {
     let mut failures = Vec::new();
     for name in DEMOS {
         for &(_, format) in Format::ALL {
-            if let Err(e) = check_golden(name, format, bless) {
-                failures.push(e);
+            for smooth in [false, true] {
+                if let Err(e) = check_golden(name, format, smooth, bless) {
+                    failures.push(e);
+                }
             }
         }
     }
@@ -505,4 +516,44 @@ fn render_model_fails_on_one_line() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(err.starts_with("error: bad view: pitch 90"), "{err}");
+}
+
+/// Smooth shading: every method draws a smoothed model as the scan-line method does, in both
+/// formats, and the picture is not the flat one.
+#[test]
+fn every_method_draws_the_same_smooth_model() {
+    for name in ["icosphere.stl", "torus.off"] {
+        let flat = model::load(&models_dir().join(name)).unwrap();
+        let smooth = flat.smoothed(45.0);
+        assert_eq!(
+            smooth.vertex_normals.len(),
+            smooth.positions.len(),
+            "{name}"
+        );
+        for &(_, format) in Format::ALL {
+            let draw = |m: &model::LoadedModel, algo| {
+                render_model_image(m, &View::default(), 96, 96, algo, format)
+                    .unwrap_or_else(|e| panic!("{name} {algo:?}: {e}"))
+                    .to_rgb8()
+            };
+            let reference = draw(&smooth, Algo::Scanline);
+            assert_ne!(
+                reference,
+                draw(&flat, Algo::Scanline),
+                "{name}: smooth is flat"
+            );
+            for &(algo_name, algo) in Algo::ALL {
+                // The painters are exact only where nothing overlaps: the torus overlaps.
+                if matches!(algo, Algo::CullOnly | Algo::Ordered | Algo::Auto) {
+                    continue;
+                }
+                let differ = draw(&smooth, algo)
+                    .chunks(3)
+                    .zip(reference.chunks(3))
+                    .filter(|(a, b)| a != b)
+                    .count();
+                assert_eq!(differ, 0, "{name} {algo_name} {format:?}: pixels differ");
+            }
+        }
+    }
 }

@@ -49,6 +49,7 @@ fn torus(nu: u32, nv: u32) -> LoadedModel {
         positions,
         faces,
         normals: Vec::new(),
+        vertex_normals: Vec::new(),
         centre: [0.0; 3],
         scale: 1.0,
         warnings: Vec::new(),

@@ -1,6 +1,6 @@
 //! The torus converted with per-vertex normals (`torus_smooth`, crease angle 60°): the same
 //! vertices and faces as the flat conversion, and at each vertex a unit normal close to the
-//! torus's own surface normal there.
+//! torus's own surface normal there; its `MESH` draws smooth within the converter's capacities.
 
 use zrow::Scalar;
 use zrow_byo::{torus, torus_smooth};
@@ -41,4 +41,66 @@ fn the_smooth_torus_has_the_surface_normals() {
     // 16 x 8 quads: the faces on either side of a vertex along the tube differ in shape, so
     // their average leans a little (measured 2.74°), well under the 22.5° between faces.
     assert!(worst < 3.0, "{worst}°");
+}
+
+/// The converted mesh carries its vertex normals, and the renderer sized by the converter's
+/// capacities with intensity planes draws it smooth: the z-buffer's frame, and not the flat one.
+#[test]
+fn the_smooth_torus_draws_smooth_within_its_capacities() {
+    use zrow::shading::Shading;
+    use zrow::{Affine, Config, FrameBuffer, ModelScene, Object, Rgb565, Scanline};
+    use zrow_model::camera::{light, View};
+    assert_eq!(
+        torus_smooth::MESH.vertex_normals.len(),
+        torus::VERTICES.len()
+    );
+    type Smooth = Scanline<
+        zrow::Q16_16,
+        { torus_smooth::WIDTH },
+        { torus_smooth::VERTEX_SLOTS },
+        { torus_smooth::POLYGONS },
+        { torus_smooth::ACTIVE },
+        u16,
+        zrow::scanline::Uncued,
+        [zrow::IntensityPlane<zrow::Q16_16>; torus_smooth::POLYGONS],
+    >;
+    let objects = [Object {
+        mesh: &torus_smooth::MESH,
+        transform: Affine::rotate_yx_translate(0.4, 0.3, [0.0; 3]).unwrap(),
+    }];
+    let scene = ModelScene {
+        objects: &objects,
+        camera: View::default().camera().unwrap(),
+        light: light(),
+    };
+    let draw = |r: &mut dyn FnMut(&Config, &mut FrameBuffer<'_>), shading| {
+        let mut cfg = Config::model(240, 240);
+        cfg.shading = shading;
+        let mut pixels = vec![Rgb565::new(0, 0, 0); 240 * 240];
+        r(&cfg, &mut FrameBuffer::new(&mut pixels, 240));
+        pixels
+    };
+    let mut scan = Box::new(Smooth::new());
+    let mut zbuf = Box::new(zrow::ZBuffer::<zrow::Q16_16, 240, 240>::new());
+    let smooth = draw(
+        &mut |c, f| {
+            scan.render(&scene, c, f).unwrap();
+        },
+        Shading::Gouraud,
+    );
+    let flat = draw(
+        &mut |c, f| {
+            scan.render(&scene, c, f).unwrap();
+        },
+        Shading::Flat,
+    );
+    let by_z = draw(
+        &mut |c, f| {
+            zbuf.render(&scene, c, f).unwrap();
+        },
+        Shading::Gouraud,
+    );
+    assert_eq!(smooth, by_z);
+    let changed = smooth.iter().zip(&flat).filter(|(a, b)| a != b).count();
+    assert!(changed > 1000, "smooth shading changed {changed} pixels");
 }

@@ -616,9 +616,10 @@ fn planarity(points: &[P3]) -> f64 {
     }
 }
 
-/// Bytes of a `zrow::Mesh` on a 32-bit target (its positions, faces and normals: three
-/// two-variant enums over slices), checked at compile time by `zrow-byo` when built for one.
-pub const MESH_BYTES: usize = 40;
+/// Bytes of a `zrow::Mesh` on a 32-bit target (its positions, faces, face normals and vertex
+/// normals: four two-variant enums over slices), checked at compile time by `zrow-byo` when
+/// built for one.
+pub const MESH_BYTES: usize = 52;
 
 /// Compact positions ([`ConvertOptions::compact`]) are integers at 2^-`COMPACT_SHIFT`: the unit
 /// sphere in ±16,384, with room to spare in 16 bits.
@@ -1639,7 +1640,8 @@ fn emit(c: &Converted, name: &str) -> String {
             &mut s,
             "/// One unit normal per vertex, model space, for smooth (Gouraud) shading: the \
              file's own or\n/// averaged from the faces within the crease angle (the report \
-             says which); `MESH` draws flat\n/// and does not read them",
+             says which); `MESH` carries\n/// them: smooth under `zrow::shading::Shading::Gouraud`, \
+             flat otherwise",
             "VERTEX_NORMALS",
             &c.vertex_normals,
             c,
@@ -1692,6 +1694,15 @@ fn emit(c: &Converted, name: &str) -> String {
         )
     } else {
         mesh
+    };
+    let mesh = match (c.vertex_normals.is_empty(), c.report.compact) {
+        (true, _) => mesh,
+        (false, true) => format!(
+            "{mesh}\n        .with_vertex_normals(zrow::Vectors::Compact {{ raw: &VERTEX_NORMALS, shift: {COMPACT_SHIFT} }})"
+        ),
+        (false, false) => {
+            format!("{mesh}\n        .with_vertex_normals(zrow::Vectors::Format(&VERTEX_NORMALS))")
+        }
     };
     let cap = &c.capacities;
     let _ = writeln!(

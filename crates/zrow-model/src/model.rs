@@ -46,7 +46,7 @@ use std::io::{self, Read};
 use std::path::Path;
 use zrow::pixelcolor::Rgb565;
 use zrow::raster::MAX_FACE_VERTICES;
-use zrow::{Face, Mesh, Scalar, Vec3};
+use zrow::{Face, Mesh, Scalar, Vec3, Vectors};
 
 /// The colour of faces the file gives none for (STL, OBJ without material), 8-bit RGB.
 pub const DEFAULT_RGB: [u8; 3] = [200, 200, 200];
@@ -192,6 +192,10 @@ pub struct LoadedModel {
     /// refer to ([`ModelFace::normals`]); empty when the file gives none for some corner (then
     /// [`LoadedModel::warnings`] says so, and [`LoadedModel::vertex_normals`] computes them).
     pub normals: Vec<[f32; 3]>,
+    /// One unit normal per vertex for smooth shading once [`LoadedModel::smoothed`] has made
+    /// them, else empty; [`LoadedModel::with_mesh`] hands them to zrow
+    /// ([`zrow::Mesh::vertex_normals`]).
+    pub vertex_normals: Vec<[f32; 3]>,
     /// The normalisation: `normalised = (original − centre) · scale`.
     pub centre: [f32; 3],
     /// See `centre`.
@@ -235,7 +239,52 @@ impl LoadedModel {
                 alpha: 255,
             })
             .collect();
-        Ok(f(&Mesh::new(&vertices, &faces)))
+        let normals: Vec<Vec3<N>> = self
+            .vertex_normals
+            .iter()
+            .map(|&n| Vec3::from_f32(n).unwrap_or(Vec3::new(N::ZERO, N::ZERO, N::ZERO)))
+            .collect();
+        let mesh = Mesh::new(&vertices, &faces).with_vertex_normals(Vectors::Format(&normals));
+        Ok(f(&mesh))
+    }
+
+    /// The same model ready for smooth shading: one normal per vertex
+    /// ([`LoadedModel::vertex_normals`] with a crease angle of `crease_degrees`), the vertices
+    /// that need several copied, the faces (same order, colours and origins) renumbered to
+    /// them. Its mesh ([`LoadedModel::with_mesh`]) carries the normals.
+    pub fn smoothed(&self, crease_degrees: f64) -> LoadedModel {
+        let v = self.vertex_normals(crease_degrees);
+        let pick = |k: &u32| *k as usize;
+        let faces = self
+            .faces
+            .iter()
+            .zip(v.faces)
+            .map(|(f, indices)| ModelFace {
+                indices,
+                color: f.color,
+                origin: f.origin,
+                normals: Vec::new(),
+            })
+            .collect();
+        LoadedModel {
+            file: self.file.clone(),
+            positions: v
+                .source
+                .iter()
+                .map(|k| self.positions.get(pick(k)).copied().unwrap_or_default())
+                .collect(),
+            vertex_origins: v
+                .source
+                .iter()
+                .map(|k| self.vertex_origins.get(pick(k)).copied().flatten())
+                .collect(),
+            faces,
+            normals: Vec::new(),
+            vertex_normals: v.normals.iter().map(|n| n.map(|c| c as f32)).collect(),
+            centre: self.centre,
+            scale: self.scale,
+            warnings: self.warnings.clone(),
+        }
     }
 
     /// One normal per vertex for smooth shading ([`crate::vertex_normals`]): the file's own when
@@ -371,6 +420,7 @@ fn finish(file: &str, raw: Raw) -> Result<LoadedModel, ModelError> {
         vertex_origins: raw.origins,
         faces: raw.faces,
         normals: raw.normals,
+        vertex_normals: Vec::new(),
         centre: centre.map(|c| c as f32),
         scale: scale as f32,
         warnings: Vec::new(),
