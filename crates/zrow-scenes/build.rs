@@ -242,6 +242,28 @@ fn torus(ring: usize, tube: usize, major: f32, minor: f32) -> MeshGen {
     m
 }
 
+/// The unit outward normals of [`torus`]'s vertices, in the same order: the surface's own,
+/// `(cos v cos u, sin v, cos v sin u)`, at 2^-SHIFT (smooth shading's `mesh1k-smooth`).
+fn emit_torus_normals(out: &mut String, name: &str, ring: usize, tube: usize) {
+    use std::f64::consts::TAU;
+    writeln!(
+        out,
+        "pub(crate) static {name}_NORMALS_I16: [[i16; 3]; {}] = [",
+        ring * tube
+    )
+    .unwrap();
+    let q = |x: f64| (x * (1u32 << SHIFT) as f64).round() as i16;
+    for i in 0..ring {
+        let u = TAU * i as f64 / ring as f64;
+        for j in 0..tube {
+            let v = TAU * j as f64 / tube as f64;
+            let n = [v.cos() * u.cos(), v.sin(), v.cos() * u.sin()];
+            writeln!(out, "    [{}, {}, {}],", q(n[0]), q(n[1]), q(n[2])).unwrap();
+        }
+    }
+    writeln!(out, "];").unwrap();
+}
+
 /// `count` random screen-space triangles (x, y in 0..size, depth 0..max_depth), random
 /// non-black colours; Marsaglia's xorshift32.
 fn random_triangles(count: usize, size: f32, max_depth: f32, seed: u32) -> MeshGen {
@@ -281,6 +303,7 @@ fn main() {
     let cube = cube();
     cube.emit_compact(&mut out, "CUBE");
     torus(25, 20, 1.0, 0.4).emit_compact(&mut out, "TORUS");
+    emit_torus_normals(&mut out, "TORUS", 25, 20);
     let ring = torus(16, 8, 0.7, 0.25);
     ring.emit_compact(&mut out, "RING");
     // The interlocked demo: one lit colour per object.

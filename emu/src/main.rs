@@ -167,10 +167,17 @@ struct Line {
 }
 
 /// The `ram=` figure: the scan-line's formula at the frame's requirements (with the affine
-/// cue's per-edge state only if the frame uses that cue), else `RAM_BYTES`.
-fn ram<N: Format, R: Renderer<N>>(req: &zrow::Requirements, affine_cue: bool) -> usize {
+/// cue's per-edge state only if the frame uses that cue, an intensity plane per polygon only
+/// if it is smooth shaded), else `RAM_BYTES`.
+fn ram<N: Format, R: Renderer<N>>(
+    req: &zrow::Requirements,
+    affine_cue: bool,
+    smooth: bool,
+) -> usize {
     if R::NAME == "scanline" {
-        if affine_cue {
+        if smooth {
+            zrow::scanline::ram_bytes_gouraud::<N>(req)
+        } else if affine_cue {
             zrow::scanline::ram_bytes::<N>(req)
         } else {
             zrow::scanline::ram_bytes_uncued::<N>(req)
@@ -199,7 +206,7 @@ fn frame<N: Format, R: Renderer<N>>(
     result.map_err(|_| "render failed (capacity or scene error)")?;
     Ok(Line {
         tris,
-        ram: ram::<N, R>(&req, affine_cue),
+        ram: ram::<N, R>(&req, affine_cue, cfg.shading == zrow::shading::Shading::Gouraud),
         hash: sink.0,
     })
 }

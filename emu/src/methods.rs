@@ -31,10 +31,19 @@ macro_rules! for_each_method {
 
 /// Calls `$run!(TYPE, FORMAT, "scene")` for the cheap methods `auto` picks where a scene's
 /// structure allows (zrow::structure): back-face culling alone on the cube, one closed convex
-/// solid. Compare with the scan-line lines for the same scene.
+/// solid (compare with the scan-line lines for the same scene); then the scan-line method
+/// smooth shading the torus (`mesh1k-smooth`: compare with `mesh1k`).
 macro_rules! for_each_structured {
     ($run:ident) => {
         $run!(zrow::cullonly::CullOnly<Q16_16, 240, 64, 256>, Q16_16, "cube");
         $run!(zrow::cullonly::CullOnly<f32, 240, 64, 256>, f32, "cube");
+        $run!(Smooth<Q16_16>, Q16_16, "mesh1k-smooth");
+        $run!(Smooth<f32>, f32, "mesh1k-smooth");
     };
 }
+
+/// The scan-line renderer for smooth shading (`zrow_scenes::SMOOTH`): capacities for the
+/// torus with room to spare (it needs 500 vertex slots, 454 polygons, 67 active), no affine
+/// cue state, an intensity plane per polygon (`zrow::scanline_for!(N, REQ, gouraud)`).
+type Smooth<N> =
+    zrow::Scanline<N, 240, 1024, 512, 128, u16, zrow::scanline::Uncued, [zrow::IntensityPlane<N>; 512]>;

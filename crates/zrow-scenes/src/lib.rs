@@ -199,6 +199,9 @@ pub fn mesh<N: Format>(name: &str) -> Option<Mesh<'static, N>> {
     Some(match name {
         "cube" => cube_with(&CUBE_FACES),
         "mesh1k" => compact_triangles(&TORUS_I16, &TORUS_TRIANGLES, &TORUS_COLORS),
+        // The torus with its surface normals at the vertices, for smooth shading.
+        "mesh1k-smooth" => compact_triangles(&TORUS_I16, &TORUS_TRIANGLES, &TORUS_COLORS)
+            .with_vertex_normals(compact(&TORUS_NORMALS_I16)),
         "random400" => triangles(N::random400(), &RANDOM400_TRIANGLES, &RANDOM400_COLORS),
         "foley100" => triangles(N::foley100(), &FOLEY100_TRIANGLES, &FOLEY100_COLORS),
         "foley2500" => triangles(N::foley2500(), &FOLEY2500_TRIANGLES, &FOLEY2500_COLORS),
@@ -267,9 +270,15 @@ pub fn light<N: Scalar>() -> Option<Light<N>> {
     })
 }
 
+/// The smooth-shaded scenes: `mesh1k-smooth`, the torus with its surface normals at the
+/// vertices, configured for [`zrow::shading::Shading::Gouraud`] (a renderer that keeps
+/// intensity planes draws it: `zrow::scanline_for!(N, REQ, gouraud)`).
+pub const SMOOTH: [&str; 1] = ["mesh1k-smooth"];
+
 /// Calls `f` with the named scene, its configuration (240×240) and its face count; `None` for
 /// an unknown name. `angle` (radians) turns model scenes about the vertical axis. Names: the
-/// standard scenes ([`NAMES`]), the demos ([`DEMOS`]) and the comparison scenes ([`FOLEY`]).
+/// standard scenes ([`NAMES`]), the demos ([`DEMOS`]), the comparison scenes ([`FOLEY`]) and
+/// the smooth-shaded ones ([`SMOOTH`]).
 pub fn with_scene<N: Format, R>(
     name: &str,
     angle: f32,
@@ -292,6 +301,15 @@ pub fn with_scene_math<N: Format, R>(
     let faces = mesh.faces.len();
     if name == "random400" || FOLEY.contains(&name) {
         return Some(f(&ScreenScene { mesh }, &Config::screen(SIZE, SIZE), faces));
+    }
+    if SMOOTH.contains(&name) {
+        return model(mesh, angle, math, |scene, cfg, faces| {
+            let cfg = Config {
+                shading: zrow::shading::Shading::Gouraud,
+                ..*cfg
+            };
+            f(scene, &cfg, faces)
+        });
     }
     model(mesh, angle, math, f)
 }
