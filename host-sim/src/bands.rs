@@ -67,7 +67,10 @@ impl<N: Scalar> Projected<N> {
             let start = u32::try_from(out.vertices.len()).map_err(|_| zrow::Error::BadConfig)?;
             let (mut top, mut bottom) = (i32::MAX, i32::MIN);
             for k in 0..p.corners.len() {
-                let v = p.vertex(k);
+                let v = p.vertex(k).ok_or(zrow::Error::IndexOutOfRange {
+                    face: p.face,
+                    index: p.corners[k],
+                })?;
                 (top, bottom) = (top.min(v.y), bottom.max(v.y));
                 out.vertices.push(v);
             }

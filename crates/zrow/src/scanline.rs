@@ -587,14 +587,7 @@ impl<
         scene.polygons(cfg, &mut buf, &mut |poly| {
             let n = poly.corners.len();
             // Geometry's corners are always in range; a scene of its own may not be.
-            let out_of_range = || {
-                let len = poly.vertices.len();
-                let index = poly.corners.iter().find(|&&c| c as usize >= len);
-                index.map(|&index| Error::IndexOutOfRange {
-                    face: poly.face,
-                    index,
-                })
-            };
+            let out_of_range = || poly.corner_error();
             let at = |k: usize| &poly.vertices[poly.corners[k] as usize];
             // The buffer has at most S::MAX_SLOTS slots.
             let slot = |k: usize| S::from_slot(poly.corners[k]);

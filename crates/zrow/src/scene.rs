@@ -764,10 +764,34 @@ pub struct Polygon<'a, N> {
 pub type IntensityPlane<N> = DepthPlane<N>;
 
 impl<N: Copy> Polygon<'_, N> {
-    /// Corner `k`.
+    /// Corner `k`, or `None` past the last corner or for a corner beyond `vertices` (which
+    /// only a [`Scene`] of one's own can hand over).
+    ///
+    /// ```
+    /// use zrow::raster::RasterVertex;
+    /// use zrow::scene::Polygon;
+    /// let v = [RasterVertex { x: 3, y: 4, z: 0.5f32 }];
+    /// let p = Polygon {
+    ///     vertices: &v, corners: &[0, 7], cached: false, area2: 0,
+    ///     color: zrow::Rgb565::new(31, 0, 0), intensity: None, alpha: 255, face: 0,
+    /// };
+    /// assert_eq!(p.vertex(0), Some(v[0]));
+    /// assert_eq!(p.vertex(1), None); // corner 7 of a polygon over one vertex
+    /// assert_eq!(p.vertex(2), None); // past its corners
+    /// ```
     #[inline]
-    pub fn vertex(&self, k: usize) -> RasterVertex<N> {
-        self.vertices[self.corners[k] as usize]
+    pub fn vertex(&self, k: usize) -> Option<RasterVertex<N>> {
+        let index = *self.corners.get(k)?;
+        self.vertices.get(index as usize).copied()
+    }
+    /// [`Error::IndexOutOfRange`] for its first corner beyond `vertices`, if one is.
+    pub(crate) fn corner_error(&self) -> Option<Error> {
+        let len = self.vertices.len();
+        let index = *self.corners.iter().find(|&&c| c as usize >= len)?;
+        Some(Error::IndexOutOfRange {
+            face: self.face,
+            index,
+        })
     }
     /// Its corners gathered into a [`RasterPolygon`] (a copy); for more than
     /// [`crate::raster::MAX_POLYGON_VERTICES`] corners [`Error::TooManyVertices`], for a
