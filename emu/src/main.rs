@@ -206,7 +206,7 @@ fn frame<N: Format, R: Renderer<N>>(
     result.map_err(|_| "render failed (capacity or scene error)")?;
     Ok(Line {
         tris,
-        ram: ram::<N, R>(&req, affine_cue, cfg.shading == zrow::shading::Shading::Gouraud),
+        ram: ram::<N, R>(&req, affine_cue, cfg.shading.is_smooth()),
         hash: sink.0,
     })
 }

@@ -98,7 +98,7 @@ pub(crate) fn with_scene<N: Scalar, R>(
     })?;
     let mut cfg = Config::model(width, height);
     if !model.vertex_normals.is_empty() {
-        cfg.shading = zrow::shading::Shading::Gouraud;
+        cfg.shading = zrow::shading::Shading::Gouraud { dither: false };
     }
     model.with_mesh::<N, _>(|mesh| {
         let objects = [Object {

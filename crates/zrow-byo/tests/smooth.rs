@@ -86,7 +86,7 @@ fn the_smooth_torus_draws_smooth_within_its_capacities() {
         &mut |c, f| {
             scan.render(&scene, c, f).unwrap();
         },
-        Shading::Gouraud,
+        Shading::Gouraud { dither: false },
     );
     let flat = draw(
         &mut |c, f| {
@@ -98,7 +98,7 @@ fn the_smooth_torus_draws_smooth_within_its_capacities() {
         &mut |c, f| {
             zbuf.render(&scene, c, f).unwrap();
         },
-        Shading::Gouraud,
+        Shading::Gouraud { dither: false },
     );
     assert_eq!(smooth, by_z);
     let changed = smooth.iter().zip(&flat).filter(|(a, b)| a != b).count();

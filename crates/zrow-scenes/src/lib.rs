@@ -305,7 +305,7 @@ pub fn with_scene_math<N: Format, R>(
     if SMOOTH.contains(&name) {
         return model(mesh, angle, math, |scene, cfg, faces| {
             let cfg = Config {
-                shading: zrow::shading::Shading::Gouraud,
+                shading: zrow::shading::Shading::Gouraud { dither: false },
                 ..*cfg
             };
             f(scene, &cfg, faces)

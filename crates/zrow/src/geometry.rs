@@ -188,7 +188,7 @@ fn intensity_plane<N: Scalar>(
     v: &[RasterVertex<N>],
     levels: &[N],
     clockwise: bool,
-    subpixel_bits: u32,
+    cfg: &Config,
 ) -> Option<IntensityPlane<N>> {
     let mut lit = [RasterVertex::default(); MAX_POLYGON_VERTICES];
     for ((d, p), &z) in lit.iter_mut().zip(v).zip(levels) {
@@ -196,7 +196,9 @@ fn intensity_plane<N: Scalar>(
     }
     let mut ordered = [RasterVertex::default(); MAX_POLYGON_VERTICES];
     let n = canonical(&lit[..v.len().min(levels.len())], clockwise, &mut ordered);
-    N::depth_plane(&ordered[..n], subpixel_bits)
+    let levels = N::depth_plane(&ordered[..n], cfg.subpixel_bits as u32)?;
+    let dither = matches!(cfg.shading, Shading::Gouraud { dither: true });
+    Some(IntensityPlane { levels, dither })
 }
 
 /// 0, 1, 2, …: the corners of a polygon whose vertices are listed in order.
@@ -882,8 +884,7 @@ fn emit_clipped<N: Scalar, I: MeshIndex>(
         for (d, c) in lit.iter_mut().zip(&clip) {
             *d = c.level;
         }
-        let s = cfg.subpixel_bits as u32;
-        intensity = intensity_plane(v, &lit[..v.len()], area2 > 0, s);
+        intensity = intensity_plane(v, &lit[..v.len()], area2 > 0, cfg);
     }
     let out = Out {
         color: match intensity {
@@ -909,7 +910,7 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
         buf: &mut VertexBuffer<'_, N>,
         f: &mut dyn FnMut(&Polygon<'_, N>) -> Result<(), Error>,
     ) -> Result<(), Error> {
-        if !SMOOTH && cfg.shading == Shading::Gouraud {
+        if !SMOOTH && cfg.shading.is_smooth() {
             return Err(Error::Unsupported {
                 feature: "smooth shading (zrow built without `gouraud`)",
             });
@@ -957,13 +958,11 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
             let count = mesh.vertices.len();
             // Smooth: each corner lit with its vertex's normal, the face's own colour scaled
             // per pixel (a plane that cannot be fitted leaves the face flat).
-            let smooth =
-                SMOOTH && cfg.shading == Shading::Gouraud && !mesh.vertex_normals.is_empty();
+            let smooth = SMOOTH && cfg.shading.is_smooth() && !mesh.vertex_normals.is_empty();
             let level = |i: usize| {
                 let n = mesh.vertex_normals.get(i);
                 lighting.level(n.map(|n| [n.x, n.y, n.z]))
             };
-            let s = cfg.subpixel_bits as u32;
             let levels_of = |face: &Face<'_, I>| {
                 let mut levels = [N::ZERO; MAX_POLYGON_VERTICES];
                 for (d, i) in levels.iter_mut().zip(face.indices) {
@@ -974,7 +973,7 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
             // A smooth face's intensity plane through its snapped corners `v`.
             let plane = |face: &Face<'_, I>, v: &[RasterVertex<N>], area2: i64| {
                 let n = v.len().min(face.indices.len());
-                intensity_plane(v, &levels_of(face)[..n], area2 > 0, s)
+                intensity_plane(v, &levels_of(face)[..n], area2 > 0, cfg)
             };
             // Its colour: its own under an intensity plane, else lit flat.
             let color = |k: usize, face: &Face<'_, I>, smooth: bool| match smooth {

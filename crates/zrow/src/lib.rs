@@ -39,7 +39,8 @@
 //!    screen space ([`ScreenScene`]).
 //! 3. [`geometry`]: every vertex transformed, projected and snapped once, back faces culled by
 //!    their snapped winding ([`backface`]), the rest clipped to the view and the guard band
-//!    and lit ([`shading`] for the depth cue).
+//!    and lit: flat, or smooth from normals at the vertices ([`shading`], also the depth
+//!    cue).
 //! 4. [`raster`]: the exact edge walk and its top-left fill rule, the polygons' outlines and
 //!    depth planes.
 //! 5. A hidden-surface method behind [`Renderer`]: the scan-line method ([`scanline`],
@@ -146,7 +147,7 @@ pub use zbuffer::ZBuffer;
 ///
 /// `scanline_for!(N, REQ, gouraud)` draws smooth shading
 /// ([`Shading::Gouraud`](shading::Shading::Gouraud)): uncued, with an intensity plane per
-/// polygon ([`scanline::ShadeStore`]; 20 bytes a polygon in a 32-bit format,
+/// polygon ([`scanline::ShadeStore`]; 24 bytes a polygon in a 32-bit format,
 /// [`scanline::ram_bytes_gouraud`]). The others refuse a smooth-shaded frame with
 /// [`Error::Unsupported`].
 #[macro_export]

@@ -542,6 +542,28 @@ pub fn shade_level(c: Rgb565, level: u8) -> Rgb565 {
     Rgb565::new(s(c.r()), s(c.g()), s(c.b()))
 }
 
+/// [`shade_level`] with ordered dithering at pixel (`x`, `y`): each channel is
+/// `floor(c·level/255 + (b + 0.5)/16)` with `b` the pixel's entry of the 4 × 4 Bayer matrix,
+/// so a 4 × 4 block averages `c·level/255` and no channel passes `c`.
+#[inline]
+pub fn shade_level_dithered(c: Rgb565, level: u8, x: i32, y: i32) -> Rgb565 {
+    use embedded_graphics_core::pixelcolor::RgbColor;
+    const BAYER: [[u16; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
+    let b = BAYER[(y & 3) as usize][(x & 3) as usize];
+    let (i, t) = (level as u32, (255 * b + 127) as u32);
+    let s = |ch: u8| ((ch as u32 * i * 16 + t) / (255 * 16)) as u8;
+    Rgb565::new(s(c.r()), s(c.g()), s(c.b()))
+}
+
+/// The colour of pixel (`x`, `y`) of a smooth-shaded polygon at `level`.
+#[inline]
+fn shade_pixel(c: Rgb565, level: u8, dither: bool, x: i32, y: i32) -> Rgb565 {
+    match dither {
+        false => shade_level(c, level),
+        true => shade_level_dithered(c, level, x, y),
+    }
+}
+
 /// A polygon's colour at the centre of pixel (`i`, `j`): `color`, or, smooth shaded, `color`
 /// at the level its intensity plane has there.
 #[inline]
@@ -553,13 +575,13 @@ pub fn color_at<N: Scalar>(
 ) -> Rgb565 {
     match intensity {
         None => color,
-        Some(p) => shade_level(color, p.at(i, j).to_level()),
+        Some(p) => shade_pixel(color, p.levels.at(i, j).to_level(), p.dither, i, j),
     }
 }
 
 /// Paints `run`, columns `x0..` of row `y`, with a polygon's colour: one colour
 /// ([`fill_run`]), or, smooth shaded, its intensity plane stepped along the row from `x0` as
-/// depth is ([`DepthPlane::at`], then [`Scalar::step`] by one pixel).
+/// depth is ([`DepthPlane::at`], then [`Scalar::step`] by one pixel), dithered if it says so.
 #[inline]
 pub(crate) fn paint_run<N: Scalar>(
     run: &mut [Rgb565],
@@ -578,10 +600,11 @@ pub(crate) fn paint_run<N: Scalar>(
 /// inlined.
 #[inline(never)]
 fn shade_run<N: Scalar>(run: &mut [Rgb565], color: Rgb565, p: &IntensityPlane<N>, x0: i32, y: i32) {
-    let mut v = p.at(x0, y);
-    for c in run {
-        *c = shade_level(color, v.to_level());
-        v = v.step(p.dzdx, 1);
+    let (plane, dither) = (&p.levels, p.dither);
+    let mut v = plane.at(x0, y);
+    for (x, c) in (x0..).zip(run) {
+        *c = shade_pixel(color, v.to_level(), dither, x, y);
+        v = v.step(plane.dzdx, 1);
     }
 }
 

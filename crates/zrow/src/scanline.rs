@@ -299,7 +299,7 @@ impl<N> CueStore<N> for Uncued {
 
 /// Where a scan-line renderer keeps smooth shading's intensity planes (its `G` parameter):
 /// [`Flat`], none (the default: a frame with a smooth-shaded polygon is then
-/// [`Error::Unsupported`]), or `[IntensityPlane<N>; P]`, one per polygon of the table (20
+/// [`Error::Unsupported`]), or `[IntensityPlane<N>; P]`, one per polygon of the table (24
 /// bytes a polygon in a 32-bit format): `scanline_for!(N, REQ, gouraud)`.
 pub trait ShadeStore<N>: sealed::Sealed {
     /// The store with nothing set (all zero: a `static` renderer stays in `.bss`).
@@ -316,11 +316,14 @@ pub trait ShadeStore<N>: sealed::Sealed {
 
 impl<N: Scalar, const K: usize> ShadeStore<N> for [IntensityPlane<N>; K] {
     const EMPTY: Self = [IntensityPlane {
-        z_ref: N::ZERO,
-        dzdx: N::ZERO,
-        dzdy: N::ZERO,
-        i_ref: 0,
-        j_ref: 0,
+        levels: DepthPlane {
+            z_ref: N::ZERO,
+            dzdx: N::ZERO,
+            dzdy: N::ZERO,
+            i_ref: 0,
+            j_ref: 0,
+        },
+        dither: false,
     }; K];
     const KEEPS: bool = true;
     #[inline]
@@ -643,11 +646,14 @@ impl<
                 if G::KEEPS {
                     // A flat polygon: its colour at level 255, which is the colour itself.
                     let flat = IntensityPlane {
-                        z_ref: N::from_f32(255.0).unwrap_or(N::ONE),
-                        dzdx: N::ZERO,
-                        dzdy: N::ZERO,
-                        i_ref: 0,
-                        j_ref: 0,
+                        levels: DepthPlane {
+                            z_ref: N::from_f32(255.0).unwrap_or(N::ONE),
+                            dzdx: N::ZERO,
+                            dzdy: N::ZERO,
+                            i_ref: 0,
+                            j_ref: 0,
+                        },
+                        dither: false,
                     };
                     shades.set(table.len(), poly.intensity.unwrap_or(flat));
                 }

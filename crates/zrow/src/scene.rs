@@ -757,11 +757,19 @@ pub struct Polygon<'a, N> {
 /// ([`DepthPlane`], the same exact arithmetic: referenced at a pixel, stepped by exact
 /// increments, so every method gets the same bits at a pixel), whose value at a pixel centre
 /// is the **level** `0..=255` its colour is scaled by there ([`Scalar::to_level`], then
-/// [`crate::geometry::shade_level`]). Levels rather than a 0..=1 fraction keep 8 more bits
+/// [`crate::raster::shade_level`], or [`crate::raster::shade_level_dithered`] if `dither`).
+/// Levels rather than a 0..=1 fraction keep 8 more bits
 /// of the gradient in Q24.8. Geometry fits it through the polygon's snapped corners and the
 /// intensities its vertices were lit with (Gouraud's interpolation; for a triangle exactly
 /// the linear interpolation of its three corners).
-pub type IntensityPlane<N> = DepthPlane<N>;
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IntensityPlane<N> {
+    /// The levels over the screen.
+    pub levels: DepthPlane<N>,
+    /// Whether each pixel's channels are dithered to Rgb565 (see
+    /// [`Shading::Gouraud`](crate::shading::Shading::Gouraud)).
+    pub dither: bool,
+}
 
 impl<N: Copy> Polygon<'_, N> {
     /// Corner `k`, or `None` past the last corner or for a corner beyond `vertices` (which

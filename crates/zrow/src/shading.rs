@@ -40,7 +40,12 @@ pub enum Shading {
     /// ([`crate::Mesh::vertex_normals`]), the intensity interpolated linearly across each
     /// polygon in screen space as an exact plane, like depth (see [`crate::scene::IntensityPlane`]). A mesh
     /// without vertex normals is drawn flat. Every method draws it, with the same bits.
-    Gouraud,
+    Gouraud {
+        /// Ordered dithering (a 4 × 4 Bayer matrix) where each channel is cut to Rgb565's 5
+        /// or 6 bits, so that a slow gradient does not band: the channel's fraction decides,
+        /// pixel by pixel, whether it rounds up, so that a 4 × 4 block averages the exact value.
+        dither: bool,
+    },
 }
 
 /// Depth-cue parameters: the factor is 1 at w ≤ `near`, `floor` at w ≥ `far`, linear between.
@@ -66,10 +71,15 @@ pub enum Interpolation {
 }
 
 impl Shading {
+    /// Whether vertices are lit one by one ([`Shading::Gouraud`]).
+    pub const fn is_smooth(&self) -> bool {
+        matches!(self, Shading::Gouraud { .. })
+    }
+
     /// Finite parameters, `near < far`, `floor` in 0..=1.
     pub(crate) fn is_valid(&self) -> bool {
         match *self {
-            Shading::Flat | Shading::Gouraud => true,
+            Shading::Flat | Shading::Gouraud { .. } => true,
             Shading::DepthCue(c) => {
                 c.near.is_finite()
                     && c.far.is_finite()

@@ -115,14 +115,24 @@ type Smooth<N> =
     Scanline<N, 64, 2048, 2048, 256, u16, zrow::scanline::Uncued, [zrow::IntensityPlane<N>; 2048]>;
 
 fn smooth_frame<N: Scalar>(sphere: (usize, usize), at: &[[f32; 3]]) -> Capture<N> {
-    with_sphere::<N, _>(sphere, at, Shading::Gouraud, true, |scene, cfg| {
-        let mut cap = Capture::new(S as usize, S as usize);
-        Box::new(Smooth::<N>::new())
-            .as_mut()
-            .render(scene, cfg, &mut cap)
-            .unwrap();
-        cap
-    })
+    smooth_frame_as::<N>(sphere, at, false)
+}
+
+fn smooth_frame_as<N: Scalar>(sphere: (usize, usize), at: &[[f32; 3]], dither: bool) -> Capture<N> {
+    with_sphere::<N, _>(
+        sphere,
+        at,
+        Shading::Gouraud { dither },
+        true,
+        |scene, cfg| {
+            let mut cap = Capture::new(S as usize, S as usize);
+            Box::new(Smooth::<N>::new())
+                .as_mut()
+                .render(scene, cfg, &mut cap)
+                .unwrap();
+            cap
+        },
+    )
 }
 
 /// The worst channel error, in LSB of the channel, over the pixels whose sphere point faces
@@ -195,30 +205,36 @@ const ONE: &[[f32; 3]] = &[[0.0; 3]];
 /// which the scan-line method resolves pixel by pixel.
 const PILE: &[[f32; 3]] = &[[-0.3, 0.0, 0.0], [0.0, 0.1, -1.0], [0.3, -0.1, 1.0]];
 
-/// Every method draws the same smooth frame, bit for bit, in each fixed-point format (the
-/// painters, exact only without overlap, draw one sphere).
+/// Every method draws the same smooth frame, bit for bit, dithered or not, in each fixed-point
+/// format (the painters, exact only without overlap, draw one sphere).
 fn every_method_draws_the_same<N: Scalar>() {
-    for m in &mut painters::<N>() {
-        same_as_scanline(m, ONE);
-    }
-    for m in &mut every_method::<N>() {
-        same_as_scanline(m, ONE);
-        same_as_scanline(m, PILE);
+    for dither in [false, true] {
+        for m in &mut painters::<N>() {
+            same_as_scanline(m, ONE, dither);
+        }
+        for m in &mut every_method::<N>() {
+            same_as_scanline(m, ONE, dither);
+            same_as_scanline(m, PILE, dither);
+        }
     }
 }
 
 /// `m` draws the spheres at `at` as the scan-line method does (each of 224 triangles, or of
 /// 80 when there are several: within the capacities of [`every_method`]).
-fn same_as_scanline<N: Scalar>(m: &mut common::Method<N>, at: &[[f32; 3]]) {
+fn same_as_scanline<N: Scalar>(m: &mut common::Method<N>, at: &[[f32; 3]], dither: bool) {
     let sphere = if at.len() > 1 { (5, 10) } else { COARSE };
-    let reference = smooth_frame::<N>(sphere, at);
+    let reference = smooth_frame_as::<N>(sphere, at, dither);
     {
         if m.name == "scanline" {
             return; // Flat: refuses (tested below)
         }
-        let (cap, _, _) = with_sphere::<N, _>(sphere, at, Shading::Gouraud, true, |scene, cfg| {
-            m.scene(scene, cfg)
-        })
+        let (cap, _, _) = with_sphere::<N, _>(
+            sphere,
+            at,
+            Shading::Gouraud { dither },
+            true,
+            |scene, cfg| m.scene(scene, cfg),
+        )
         .unwrap_or_else(|e| panic!("{}: {e:?}", m.name));
         let differ = (0..S as usize)
             .flat_map(|j| (0..S as usize).map(move |i| (i, j)))
@@ -227,7 +243,7 @@ fn same_as_scanline<N: Scalar>(m: &mut common::Method<N>, at: &[[f32; 3]]) {
         let spheres = at.len();
         assert_eq!(
             differ, 0,
-            "{} ({spheres} spheres): {differ} pixels differ from the scan-line frame",
+            "{} ({spheres} spheres, dither {dither}): {differ} pixels differ from the scan-line frame",
             m.name
         );
     }
@@ -255,19 +271,27 @@ fn smooth_shading_without_vertex_normals_is_flat() {
             cap.color
         })
     };
-    assert_eq!(draw(Shading::Gouraud), draw(Shading::Flat));
+    assert_eq!(
+        draw(Shading::Gouraud { dither: false }),
+        draw(Shading::Flat)
+    );
 }
 
 #[test]
 fn a_flat_scanline_refuses_a_smooth_frame_before_any_row() {
-    let (result, rows) =
-        with_sphere::<Q16_16, _>(FINE, ONE, Shading::Gouraud, true, |scene, cfg| {
+    let (result, rows) = with_sphere::<Q16_16, _>(
+        FINE,
+        ONE,
+        Shading::Gouraud { dither: false },
+        true,
+        |scene, cfg| {
             let mut cap = Capture::new(S as usize, S as usize);
             let r = Box::new(Scanline::<Q16_16, 64, 1024, 1024, 256>::new())
                 .as_mut()
                 .render(scene, cfg, &mut cap);
             (r.map(|_| ()), cap.drawn())
-        });
+        },
+    );
     assert!(
         matches!(result, Err(RenderError::Scene(Error::Unsupported { .. }))),
         "{result:?}"
@@ -327,7 +351,7 @@ fn the_smooth_renderer_is_the_uncued_one_and_a_plane_per_polygon() {
     };
     type R = scanline_for!(Q16_16, REQ, gouraud);
     let planes = 100 * core::mem::size_of::<zrow::IntensityPlane<Q16_16>>();
-    assert_eq!(planes, 2000);
+    assert_eq!(planes, 2400); // the levels' plane (20 B) and the dither flag
     assert_eq!(
         ram_bytes_gouraud::<Q16_16>(&REQ),
         ram_bytes_uncued::<Q16_16>(&REQ) + planes
@@ -338,5 +362,46 @@ fn the_smooth_renderer_is_the_uncued_one_and_a_plane_per_polygon() {
     assert!(
         real >= formula && real - formula < 32,
         "{real} vs {formula}"
+    );
+}
+
+/// Ordered dithering: over each 4 × 4 block a channel averages its exact value `c·level/255`
+/// within 1/16 of a step (rounding alone is off by up to half a step), never passes `c`, and
+/// leaves the full and zero levels exact.
+#[test]
+fn dithering_averages_the_exact_channel() {
+    use zrow::raster::{shade_level, shade_level_dithered};
+    let (mut worst_dither, mut worst_round) = (0.0f64, 0.0f64);
+    for ch in 0..=63u8 {
+        let c = Rgb565::new(ch.min(31), ch, 31 - ch.min(31));
+        for level in 0..=255u8 {
+            let mut sum = [0u32; 3];
+            for y in 0..4 {
+                for x in 0..4 {
+                    let d = shade_level_dithered(c, level, x, y);
+                    let pairs = [(d.r(), c.r()), (d.g(), c.g()), (d.b(), c.b())];
+                    for (s, (v, max)) in sum.iter_mut().zip(pairs) {
+                        assert!(v <= max, "channel {v} passes {max}");
+                        *s += v as u32;
+                    }
+                    if level == 255 || level == 0 {
+                        assert_eq!(d, shade_level(c, level));
+                    }
+                }
+            }
+            let r = shade_level(c, level);
+            let channels = [(c.r(), r.r()), (c.g(), r.g()), (c.b(), r.b())];
+            for (s, (full, rounded)) in sum.iter().zip(channels) {
+                let exact = full as f64 * level as f64 / 255.0;
+                worst_dither = worst_dither.max((*s as f64 / 16.0 - exact).abs());
+                worst_round = worst_round.max((rounded as f64 - exact).abs());
+            }
+        }
+    }
+    eprintln!("4x4 block mean from the exact channel: dithered {worst_dither:.4}, rounded {worst_round:.4} LSB");
+    assert!(worst_dither <= 1.0 / 16.0, "{worst_dither}");
+    assert!(
+        worst_round > 0.45,
+        "rounding alone is as close: the test cannot tell"
     );
 }
