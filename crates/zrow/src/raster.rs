@@ -575,8 +575,15 @@ pub fn color_at<N: Scalar>(
 ) -> Rgb565 {
     match intensity {
         None => color,
-        Some(p) => shade_pixel(color, p.levels.at(i, j).to_level(), p.dither, i, j),
+        Some(p) => shaded_at(color, p, i, j),
     }
+}
+
+/// [`color_at`]'s smooth case, out of line so that the flat one stays a copy wherever it is
+/// inlined.
+#[inline(never)]
+fn shaded_at<N: Scalar>(color: Rgb565, p: &IntensityPlane<N>, i: i32, j: i32) -> Rgb565 {
+    shade_pixel(color, p.levels.at(i, j).to_level(), p.dither, i, j)
 }
 
 /// Paints `run`, columns `x0..` of row `y`, with a polygon's colour: one colour
