@@ -153,35 +153,29 @@ pub use zbuffer::ZBuffer;
 #[macro_export]
 macro_rules! scanline_for {
     ($n:ty, $req:expr) => {
-        $crate::Scanline<
-            $n,
-            { $req.width as usize },
-            { $req.vertices as usize },
-            { $req.polygons as usize },
-            { $req.active_polygons as usize },
-        >
+        $crate::scanline_for!(@ $n, $req,)
     };
     ($n:ty, $req:expr, uncued) => {
-        $crate::Scanline<
-            $n,
-            { $req.width as usize },
-            { $req.vertices as usize },
-            { $req.polygons as usize },
-            { $req.active_polygons as usize },
-            u16,
-            $crate::scanline::Uncued,
-        >
+        $crate::scanline_for!(@ $n, $req, u16, $crate::scanline::Uncued)
     };
     ($n:ty, $req:expr, gouraud) => {
+        $crate::scanline_for!(
+            @ $n,
+            $req,
+            u16,
+            $crate::scanline::Uncued,
+            [$crate::scene::IntensityPlane<$n>; $req.polygons as usize]
+        )
+    };
+    // The capacities from `$req`, then the slot, cue and shade parameters given.
+    (@ $n:ty, $req:expr, $($rest:ty),*) => {
         $crate::Scanline<
             $n,
             { $req.width as usize },
             { $req.vertices as usize },
             { $req.polygons as usize },
             { $req.active_polygons as usize },
-            u16,
-            $crate::scanline::Uncued,
-            [$crate::scene::IntensityPlane<$n>; $req.polygons as usize],
+            $($rest),*
         >
     };
 }
