@@ -2,16 +2,17 @@
 //! the stable fixed-seed run (`crates/zrow/tests/fuzz_stable.rs`, in `cargo test` and CI).
 //!
 //! Any bytes → a scene (screen or model mode, Q16.16 or f32, any bit pattern for positions,
-//! camera and transform, out-of-range indices, faces of 0..12 vertices, any alpha) → every
+//! camera and transform, out-of-range indices, faces of 0..12 vertices, any alpha, flat or
+//! smooth shaded with any vertex normals) → every
 //! method at small capacities. The contract checked: no panic; rows arrive top to bottom, each
 //! once, all of them on success and none on error (nothing drawn is corrupted).
 
 use embedded_graphics_core::pixelcolor::Rgb565;
 use zrow::{
     abuffer::ABuffer, bsp::Bsp, cullonly::CullOnly, depthsort::DepthSort, ordered::Ordered,
-    tiled::Tiled, warnock::Warnock, Affine, Camera, Config, Cull, Face, Light, Mesh, ModelScene,
-    Object, Projection, Renderer, Row, RowSink, Scalar, Scanline, Scene, ScreenScene, Vec3,
-    ZBuffer, Q16_16,
+    tiled::Tiled, warnock::Warnock, Affine, Camera, Config, Cull, Face, IntensityPlane, Light,
+    Mesh, ModelScene, Object, Projection, Renderer, Row, RowSink, Scalar, Scanline, Scene,
+    ScreenScene, Vec3, Vectors, ZBuffer, Q16_16,
 };
 
 /// Reads the input front to back; zeros once it runs out.
@@ -73,6 +74,10 @@ fn run<N: Scalar, R: Renderer<N>>(
 fn every_method<N: Scalar>(scene: &impl Scene<N>, cfg: &Config) -> Reach {
     let r = &mut Reach::default();
     run(&mut Scanline::<N, 64, 64, 16, 16>::new(), scene, cfg, r);
+    // Smooth shading's scan-line renderer (the flat one above refuses a smooth frame).
+    type Smooth<N> =
+        Scanline<N, 64, 64, 16, 16, u16, zrow::scanline::Uncued, [IntensityPlane<N>; 16]>;
+    run(&mut Smooth::<N>::new(), scene, cfg, r);
     run(&mut ZBuffer::<N, 64, 64>::new(), scene, cfg, r);
     run(&mut Tiled::<N, 64, 8, 16, 64>::new(), scene, cfg, r);
     run(&mut DepthSort::<N, 64, 16, 64, 256>::new(), scene, cfg, r);
@@ -100,7 +105,7 @@ fn value<N: Scalar>(b: &mut Bytes<'_>, q16: bool) -> N {
 fn scene<N: Scalar>(data: &[u8], q16: bool) -> Reach {
     let mut b = Bytes(data);
     let mode = b.u8();
-    let cfg = Config {
+    let mut cfg = Config {
         width: 1 + (b.u8() % 64) as u16,
         height: 1 + (b.u8() % 64) as u16,
         subpixel_bits: b.u8() % 10, // 0 and 9 are invalid on purpose
@@ -163,14 +168,28 @@ fn scene<N: Scalar>(data: &[u8], q16: bool) -> Reach {
         let Some(transform) = Affine::from_f32(m) else {
             return Reach::default();
         };
-        let objects = [Object {
-            mesh: &mesh,
-            transform,
-        }];
         let light = Light {
             direction: Vec3::new(value(&mut b, q16), value(&mut b, q16), value(&mut b, q16)),
             ambient: value(&mut b, q16),
         };
+        // Mode bit 3: smooth shading (bit 4: dithered), a normal per vertex from the bytes
+        // after the light (read last, so the layout before stays as it was).
+        let normals: Vec<Vec3<N>> = match mode & 8 {
+            0 => Vec::new(),
+            _ => (0..nv)
+                .map(|_| Vec3::new(value(&mut b, q16), value(&mut b, q16), value(&mut b, q16)))
+                .collect(),
+        };
+        let mesh = mesh.with_vertex_normals(Vectors::Format(&normals));
+        let objects = [Object {
+            mesh: &mesh,
+            transform,
+        }];
+        if mode & 8 != 0 {
+            cfg.shading = zrow::shading::Shading::Gouraud {
+                dither: mode & 16 != 0,
+            };
+        }
         let scene = ModelScene {
             objects: &objects,
             camera,

@@ -37,8 +37,9 @@ impl Rng {
 
 /// One input: half of them laid out as the harness reads a scene (format, mode, size,
 /// vertices in range with a few extremes, faces of mostly valid indices, a camera, a
-/// transform and a light), so they reach the renderers' insides; the other half bytes from a
-/// mix (small numbers, 0x00/0xFF/0x7F/0x80, uniform), which mostly exercise the refusals.
+/// transform and a light, and for smooth shading a normal per vertex), so they reach the
+/// renderers' insides; the other half bytes from a mix (small numbers, 0x00/0xFF/0x7F/0x80,
+/// uniform), which mostly exercise the refusals.
 fn input(rng: &mut Rng) -> Vec<u8> {
     if rng.below(2) == 0 {
         return scene_input(rng);
@@ -188,6 +189,12 @@ fn scene_input(rng: &mut Rng) -> Vec<u8> {
             value(rng, &mut b, -1.0, 1.0);
         }
         value(rng, &mut b, 0.0, 0.5);
+        // Mode bit 3: smooth shading, a normal per vertex (about unit length, any direction).
+        if mode & 8 != 0 {
+            for _ in 0..3 * nv {
+                value(rng, &mut b, -1.0, 1.0);
+            }
+        }
     }
     b
 }
