@@ -576,6 +576,11 @@ impl<
         let (mut polys, mut uncached) = (0u32, false);
         let (table, shades) = (&mut self.polygons, &mut self.shades);
         let mut smooth = false;
+        // Level 255 in the format: a flat polygon's intensity plane (only if planes are kept).
+        let full = match G::KEEPS {
+            true => N::from_f32(255.0).unwrap_or(N::ONE),
+            false => N::ZERO,
+        };
         // Where the frame's buffer lies: a polygon is kept by slot only if its vertices are
         // that buffer (compared as addresses; a scene of its own might hand over others).
         let frame_buffer = self.vertices.as_ptr();
@@ -647,7 +652,7 @@ impl<
                     // A flat polygon: its colour at level 255, which is the colour itself.
                     let flat = IntensityPlane {
                         levels: DepthPlane {
-                            z_ref: N::from_f32(255.0).unwrap_or(N::ONE),
+                            z_ref: full,
                             dzdx: N::ZERO,
                             dzdy: N::ZERO,
                             i_ref: 0,

@@ -63,6 +63,13 @@ fn vec3<N: Scalar>(p: [f64; 3]) -> Vec3<N> {
     Vec3::from_f32([p[0] as f32, p[1] as f32, p[2] as f32]).unwrap()
 }
 
+/// The camera every test here looks through: orthographic, from +z down −z, [`HALF`] world
+/// units above and below the centre.
+fn camera<N: Scalar>() -> Camera<N> {
+    let projection = Projection::orthographic(HALF as f32, 1.0, 10.0).unwrap();
+    Camera::look_at([0.0, 0.0, 5.0], [0.0; 3], [0.0, 1.0, 0.0], projection).unwrap()
+}
+
 /// Draws spheres of `stacks` × `slices` centred at `at` with `draw` (a renderer of the caller's choosing) under `shading`.
 fn with_sphere<N: Scalar, R>(
     (stacks, slices): (usize, usize),
@@ -92,10 +99,9 @@ fn with_sphere<N: Scalar, R>(
             transform: Affine::rotate_yx_translate(0.0, 0.0, t).unwrap(),
         })
         .collect();
-    let projection = Projection::orthographic(HALF as f32, 1.0, 10.0).unwrap();
     let scene = ModelScene {
         objects: &objects,
-        camera: Camera::look_at([0.0, 0.0, 5.0], [0.0; 3], [0.0, 1.0, 0.0], projection).unwrap(),
+        camera: camera(),
         light: Light {
             direction: vec3(LIGHT),
             ambient: N::from_f32(AMBIENT as f32).unwrap(),
@@ -314,13 +320,7 @@ fn vertex_normals_of_the_wrong_count_are_a_typed_error() {
     }];
     let scene = ModelScene {
         objects: &objects,
-        camera: Camera::look_at(
-            [0.0, 0.0, 5.0],
-            [0.0; 3],
-            [0.0, 1.0, 0.0],
-            Projection::orthographic(1.0, 1.0, 10.0).unwrap(),
-        )
-        .unwrap(),
+        camera: camera(),
         light: Light {
             direction: vec3([0.0, 0.0, 1.0]),
             ambient: Q16_16::ONE,
@@ -438,13 +438,7 @@ fn extreme_normals_draw<N: Scalar>(extremes: &[f32]) {
     }];
     let scene = ModelScene {
         objects: &objects,
-        camera: Camera::look_at(
-            [0.0, 0.0, 5.0],
-            [0.0; 3],
-            [0.0, 1.0, 0.0],
-            Projection::orthographic(HALF as f32, 1.0, 10.0).unwrap(),
-        )
-        .unwrap(),
+        camera: camera(),
         light: Light {
             direction: vec3(LIGHT),
             ambient: N::from_f32(AMBIENT as f32).unwrap(),
