@@ -100,7 +100,8 @@ pub enum Error {
     },
     /// The configuration is impossible: size 0 or above `MAX_VIEWPORT`, sub-pixel bits
     /// outside 1..=8, or depth-cue parameters that are not finite, not `near < far`, or a
-    /// `floor` outside 0..=1.
+    /// `floor` outside 0..=1, or facets ([`crate::shading::Shading::Facets`]) on a background
+    /// that is not black.
     BadConfig,
     /// This method does not implement `feature`: pick a method that does (the message says
     /// which) or another setting.
@@ -204,7 +205,7 @@ impl core::fmt::Display for Error {
             ),
             Error::BadConfig => write!(
                 f,
-                "bad configuration: size must be 1..=2048, sub-pixel bits 1..=8, depth cue near < far with floor 0..=1"
+                "bad configuration: size must be 1..=2048, sub-pixel bits 1..=8, depth cue near < far with floor 0..=1, facets on black"
             ),
             Error::Unsupported { feature } => write!(f, "not supported by this method: {feature}"),
         }

@@ -42,6 +42,7 @@ use crate::scene::{
     VertexBuffer, INDEXED_CORNERS,
 };
 use crate::shading::Shading;
+use embedded_graphics_core::pixelcolor::raw::RawU16;
 use embedded_graphics_core::pixelcolor::Rgb565;
 use heapless::Vec;
 
@@ -199,6 +200,105 @@ fn intensity_plane<N: Scalar>(
     let levels = N::depth_plane(&ordered[..n], cfg.subpixel_bits as u32)?;
     let dither = matches!(cfg.shading, Shading::Gouraud { dither: true });
     Some(IntensityPlane { levels, dither })
+}
+
+/// How far back a facet is followed: faces listed one after the other in one plane merge into
+/// one facet for at most this many steps (a polygon of [`MAX_FACE_VERTICES`] corners split into
+/// triangles takes 8), so that finding a face's facet is bounded whatever the mesh.
+const FACET_RUN: usize = 16;
+
+/// The colour face `k` of `mesh` is drawn in under [`Shading::Facets`]: the raw value
+/// `facet + 1`, where `facet` is the scene number of the first face of its facet (`first_no`
+/// is the scene number of the mesh's face 0): faces are followed back while each continues the
+/// one before it ([`same_facet`]), at most [`FACET_RUN`] steps. Out of line: the loops that
+/// call it draw shaded frames nearly always, and only faces that survive culling ask.
+#[inline(never)]
+fn facet_color<N: Scalar, I: MeshIndex>(mesh: &Mesh<'_, N, I>, k: usize, first_no: u32) -> Rgb565 {
+    let mut first = k;
+    while first > 0 && k - first < FACET_RUN {
+        match (mesh.faces.get(first - 1), mesh.faces.get(first)) {
+            (Some(prev), Some(face)) if same_facet(mesh, &prev, &face) => first -= 1,
+            _ => break,
+        }
+    }
+    // Below 2^16: the scene's face count was checked ([`facets_fit`]).
+    Rgb565::from(RawU16::new((first_no as usize + first + 1) as u16))
+}
+
+/// The most faces a scene drawn as facets may have: each facet's value `facet + 1` is 16 bits.
+const MAX_FACETS: usize = 65_535;
+
+/// Facets of a scene of more faces than 16 bits can name: refused before anything is drawn,
+/// rather than drawn with two facets sharing a value.
+fn facets_fit(facets: bool, faces: usize) -> Result<(), Error> {
+    match facets && faces > MAX_FACETS {
+        true => Err(Error::Unsupported {
+            feature: "hidden lines of more than 65,535 faces",
+        }),
+        false => Ok(()),
+    }
+}
+
+/// Whether `face` continues the facet of `prev`: they share an edge (two vertices), face the
+/// same side, and `face`'s other corners lie in `prev`'s plane — within 4 LSB of the format
+/// (so that a flat quad's corners, rounded to it, do not split it) plus 10⁻³ of their distance
+/// from its first corner (0.06°; the bound is met up to a factor √2). In f32 on purpose: it
+/// decides which edges are drawn, not where.
+fn same_facet<N: Scalar, I: MeshIndex>(
+    mesh: &Mesh<'_, N, I>,
+    prev: &Face<'_, I>,
+    face: &Face<'_, I>,
+) -> bool {
+    let shared = |i: &I| prev.indices.iter().any(|j| j.index() == i.index());
+    if face.indices.iter().filter(|i| shared(i)).count() < 2 {
+        return false;
+    }
+    let point = |i: &I| {
+        let v = mesh.vertices.get(i.index())?;
+        Some([v.x.to_f32(), v.y.to_f32(), v.z.to_f32()])
+    };
+    // A face's first corner and its normal, scaled to a largest component of 1 so that no
+    // product below overflows.
+    let plane = |f: &Face<'_, I>| -> Option<([f32; 3], [f32; 3])> {
+        let (a, b, c) = (
+            point(f.indices.first()?)?,
+            point(f.indices.get(1)?)?,
+            point(f.indices.get(2)?)?,
+        );
+        let n = cross3(sub3(b, a), sub3(c, a));
+        let big = n.iter().fold(0.0f32, |m, &e| m.max(e.abs()));
+        (big > 0.0 && big.is_finite()).then(|| (a, n.map(|e| e / big)))
+    };
+    let (Some((a, n)), Some((_, m))) = (plane(prev), plane(face)) else {
+        return false;
+    };
+    if dot3(n, m) <= 0.0 {
+        return false;
+    }
+    let (nn, lsb) = (dot3(n, n), 4.0 * N::LSB);
+    face.indices.iter().filter(|i| !shared(i)).all(|i| {
+        point(i).is_some_and(|p| {
+            let d = sub3(p, a);
+            let h = dot3(n, d);
+            h * h <= 2.0 * nn * (lsb * lsb + 1e-6 * dot3(d, d))
+        })
+    })
+}
+
+fn dot3(a: [f32; 3], b: [f32; 3]) -> f32 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn sub3(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross3(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 
 /// 0, 1, 2, …: the corners of a polygon whose vertices are listed in order.
@@ -438,8 +538,25 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ScreenScene<'_, N, I> {
             }
         }
         let mut corners = [0u32; MAX_POLYGON_VERTICES];
+        // `cfg!` first: a constant the compiler drops the facet code on, in a build without
+        // the feature (the call alone left 1.4 KB of it in the Cortex-M4 firmware's flash).
+        let facets = cfg!(feature = "lines") && cfg.shading.is_facets();
+        facets_fit(facets, mesh.faces.len())?;
         for (no, face) in mesh.faces.iter().enumerate() {
-            let (no, face) = (no as u32, &face);
+            let facet;
+            let face = match facets {
+                true => {
+                    let color = facet_color(mesh, no, 0);
+                    facet = Face {
+                        color,
+                        alpha: 255,
+                        ..face
+                    };
+                    &facet
+                }
+                false => &face,
+            };
+            let no = no as u32;
             let (n, projected) =
                 corners_of(face, mesh.vertices.len(), base, buf, &mut corners, no)?;
             let mut out = Out {
@@ -926,6 +1043,11 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
         }
         let mut no = 0u32;
         let mut corners = [0u32; MAX_POLYGON_VERTICES];
+        let facets = cfg!(feature = "lines") && cfg.shading.is_facets(); // as in ScreenScene
+        facets_fit(
+            facets,
+            self.objects.iter().map(|o| o.mesh.faces.len()).sum(),
+        )?;
         for obj in self.objects {
             let mv = self.camera.view.then_after(&obj.transform);
             let lighting = Lighting::for_object(&mv, light, self.light.ambient, cfg.math);
@@ -975,10 +1097,22 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
                 let n = v.len().min(face.indices.len());
                 intensity_plane(v, &levels_of(face)[..n], area2 > 0, cfg)
             };
-            // Its colour: its own under an intensity plane, else lit flat.
-            let color = |k: usize, face: &Face<'_, I>, smooth: bool| match smooth {
-                true => face.color,
-                false => lighting.color(face.color, normal(k, face)),
+            // Its colour: its facet's, or its own under an intensity plane, else lit flat;
+            // opaque as a facet.
+            let first_no = no;
+            // (`cfg!` again inside the closures: they read `facets` through a reference, and
+            // a build without the feature must see a constant to drop the facet code.)
+            let color = |k: usize, face: &Face<'_, I>, smooth: bool| match (
+                cfg!(feature = "lines") && facets,
+                smooth,
+            ) {
+                (true, _) => facet_color(mesh, k, first_no),
+                (false, true) => face.color,
+                (false, false) => lighting.color(face.color, normal(k, face)),
+            };
+            let alpha = |face: &Face<'_, I>| match cfg!(feature = "lines") && facets {
+                true => 255,
+                false => face.alpha,
             };
             for (k, face) in mesh.faces.iter().enumerate() {
                 let face = &face;
@@ -1011,7 +1145,7 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
                             let out = Out {
                                 color: color(k, face, intensity.is_some()),
                                 intensity,
-                                alpha: face.alpha,
+                                alpha: alpha(face),
                                 face: this,
                                 area2,
                             };
@@ -1038,7 +1172,7 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
                     let out = Out {
                         color: color(k, face, intensity.is_some()),
                         intensity,
-                        alpha: face.alpha,
+                        alpha: alpha(face),
                         face: this,
                         area2,
                     };
@@ -1049,6 +1183,17 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
                 let n = face.indices.len().min(MAX_POLYGON_VERTICES);
                 let levels = levels.as_ref().map(|l| &l[..n]);
                 let color = || color(k, face, false);
+                let opaque;
+                let face = match facets {
+                    true => {
+                        opaque = Face {
+                            alpha: 255,
+                            ..*face
+                        };
+                        &opaque
+                    }
+                    false => face,
+                };
                 emit_clipped(
                     mesh, face, this, &prepared, &proj, cfg, color, levels, buf, f,
                 )?;

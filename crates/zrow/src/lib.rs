@@ -51,6 +51,8 @@
 //! 6. [`sink`]: finished rows, top to bottom, to a [`RowSink`]: memory ([`FrameBuffer`]), any
 //!    embedded-graphics display ([`DrawTargetSink`]), an SPI panel; or the whole frame as an
 //!    embedded-graphics `Drawable` ([`Drawing`]).
+//!    [`lines`] turns a frame of facets ([`shading::Shading::Facets`]) into a hidden-line
+//!    drawing on its way to one.
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
@@ -61,6 +63,9 @@ pub mod backface;
 pub mod error;
 /// Transform, cull, clip, project, snap.
 pub mod geometry;
+/// Hidden-line drawings from a frame of facets, row by row (the `lines` feature, default).
+#[cfg(feature = "lines")]
+pub mod lines;
 /// Vectors and affine transforms in any format.
 pub mod math;
 /// The interface every hidden-surface method implements.

@@ -95,6 +95,9 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     /// Whether [`Scalar::step`] is exact (fixed point: wrapping integer steps equal the plane
     /// bit for bit), so a renderer may step a depth instead of evaluating the plane again.
     const EXACT_STEPS: bool;
+    /// The format's resolution (its least significant bit) as an `f32`: 2⁻¹⁶ in Q16.16, 2⁻⁸
+    /// in Q24.8, 0 in floating point (whose rounding is relative).
+    const LSB: f32;
 
     /// Converts from `f32`; `None` for NaN, infinity or a value outside the format's range.
     fn from_f32(v: f32) -> Option<Self>;
@@ -498,6 +501,7 @@ macro_rules! impl_fixed {
             const ONE: Self = $t::ONE;
             const MAX: Self = $t::MAX;
             const EXACT_STEPS: bool = true;
+            const LSB: f32 = 1.0 / (1u32 << $t::FRAC_NBITS) as f32;
 
             fn from_f32(v: f32) -> Option<Self> {
                 $t::checked_from_num(v)
@@ -827,6 +831,7 @@ impl Scalar for f32 {
     const ONE: Self = 1.0;
     const MAX: Self = f32::MAX;
     const EXACT_STEPS: bool = false;
+    const LSB: f32 = 0.0;
 
     fn from_f32(v: f32) -> Option<Self> {
         v.is_finite().then_some(v)

@@ -124,6 +124,7 @@ impl Config {
             || self.subpixel_bits == 0
             || self.subpixel_bits > MAX_SUBPIXEL_BITS
             || !self.shading.is_valid()
+            || (self.shading.is_facets() && self.background != Rgb565::new(0, 0, 0))
         {
             return Err(Error::BadConfig);
         }

@@ -46,6 +46,19 @@ pub enum Shading {
         /// pixel by pixel, whether it rounds up, so that a 4 × 4 block averages the exact value.
         dither: bool,
     },
+    /// Facets instead of colours, for hidden-line drawings ([`crate::lines`]): every polygon
+    /// is drawn opaque, unlit, in the raw Rgb565 value `facet + 1` (0 is the background, so
+    /// [`Config::background`](crate::Config::background) must be black), where `facet` is the
+    /// scene number (objects in order, faces in order) of the first face of its facet. Faces
+    /// listed one after the other that share an edge and lie in one plane (within 0.06°: a
+    /// polygon split into triangles) are one facet, so that the diagonals inside a flat quad
+    /// are not edges. The visibility is every method's own, unchanged: a frame of facets is a
+    /// map of which surface is visible at each pixel, and [`crate::lines::HiddenLines`]
+    /// turns it into lines, 1 px wide, where the visible facet changes. A scene of more than
+    /// 65,535 faces is refused ([`Error::Unsupported`](crate::Error::Unsupported)) rather
+    /// than drawn with two facets sharing a value. Needs the `lines` feature (default).
+    #[cfg(feature = "lines")]
+    Facets,
 }
 
 /// Depth-cue parameters: the factor is 1 at w ≤ `near`, `floor` at w ≥ `far`, linear between.
@@ -76,10 +89,21 @@ impl Shading {
         matches!(self, Shading::Gouraud { .. })
     }
 
+    /// Whether polygons are drawn as facets for hidden lines ([`Shading::Facets`]; never
+    /// without the `lines` feature).
+    pub const fn is_facets(&self) -> bool {
+        #[cfg(feature = "lines")]
+        return matches!(self, Shading::Facets);
+        #[cfg(not(feature = "lines"))]
+        false
+    }
+
     /// Finite parameters, `near < far`, `floor` in 0..=1.
     pub(crate) fn is_valid(&self) -> bool {
         match *self {
             Shading::Flat | Shading::Gouraud { .. } => true,
+            #[cfg(feature = "lines")]
+            Shading::Facets => true,
             Shading::DepthCue(c) => {
                 c.near.is_finite()
                     && c.far.is_finite()
