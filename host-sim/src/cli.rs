@@ -9,7 +9,8 @@
 //!
 //! ```text
 //! zrow-sim render-model --model FILE [--yaw DEG] [--pitch DEG] [--distance D] [--size WxH]
-//!                       [--algo scanline] [--format q16.16|f32] [--smooth DEG] --out OUT.png
+//!                       [--algo scanline] [--format q16.16|f32] [--smooth DEG]
+//!                       [--lines hidden|outline] --out OUT.png
 //! ```
 //!
 //! and the converter (a model to const Rust data for flash, [`crate::convert`]):
@@ -25,7 +26,7 @@
 //! `--out` are required; `--size` defaults to 240x240 (the ST7789 panel), `--algo` to `scanline` and
 //! `--format` to `q16.16`. A flag given twice, an unknown flag or a bad value is a usage error.
 
-use crate::model_render::View;
+use crate::model_render::{Lines, View};
 use crate::output::{print, Output};
 use crate::render::{Algo, Format};
 use crate::SimError;
@@ -43,6 +44,7 @@ usage:
   zrow-sim render --screen SCENE.off --out OUT.png [--size WxH] [--algo NAME] [--format FMT]
   zrow-sim render-model --model FILE --out OUT.png [--yaw DEG] [--pitch DEG] [--distance D]
                         [--size WxH] [--algo NAME] [--format FMT] [--smooth DEG]
+                        [--lines hidden|outline]
 
   --screen FILE   OFF scene in screen space (x right, y down in pixels, z depth, smaller nearer)
   --out FILE      PNG to write (8-bit RGB, exactly WxH, background black)
@@ -60,6 +62,9 @@ usage:
   --smooth DEG    smooth (Gouraud) shading: each vertex lit with its own normal (the OBJ's vn,
                   else averaged from the faces within DEG degrees, 0..=180; 45 keeps a cube's
                   edges sharp), the intensity interpolated across each face; default flat
+  --lines KIND    hidden: a hidden-line drawing, the visible edges 1 px wide in black on
+                  white; outline: the shaded model with its visible edges in white over it.
+                  The diagonal inside a flat quad is not an edge; every method draws them
 
   zrow-sim convert --model FILE --out FILE.rs [--format FMT] [--size WxH] [--distance D]
                    [--name NAME] [--checks N] [--strict] [--compact] [--smooth DEG]
@@ -155,6 +160,8 @@ pub struct RenderModelArgs {
     /// Smooth (Gouraud) shading with vertex normals within this crease angle in degrees
     /// (`--smooth DEG`), or flat.
     pub smooth: Option<f64>,
+    /// Shaded, a hidden-line drawing or an outline drawing (`--lines hidden|outline`).
+    pub lines: Lines,
 }
 
 fn usage(msg: impl Into<String>) -> SimError {
@@ -180,6 +187,7 @@ const RENDER_MODEL_FLAGS: &[&str] = &[
     "--pitch",
     "--distance",
     "--smooth",
+    "--lines",
 ];
 
 const CONVERT_FLAGS: &[&str] = &[
@@ -236,6 +244,7 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
     let mut name_flag = None;
     let mut checks = None;
     let mut smooth = None;
+    let mut lines = None;
     while let Some(arg) = args.next() {
         let text = arg
             .to_str()
@@ -341,6 +350,20 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
                         ))
                     })?;
                 smooth.replace(parsed).is_some()
+            }
+            "--lines" => {
+                let v = text_value()?;
+                let parsed = Lines::ALL
+                    .iter()
+                    .find(|(n, _)| *n == v)
+                    .map(|&(_, l)| l)
+                    .ok_or_else(|| {
+                        usage(format!(
+                            "unknown --lines `{}`: accepted names are hidden, outline",
+                            v.escape_debug()
+                        ))
+                    })?;
+                lines.replace(parsed).is_some()
             }
             _ => {
                 // --yaw, --pitch, --distance
@@ -449,6 +472,7 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
         format,
         view,
         smooth,
+        lines: lines.unwrap_or_default(),
     })))
 }
 
@@ -554,13 +578,13 @@ pub fn render_model(args: &RenderModelArgs) -> Result<(), SimError> {
     if let Some(crease) = args.smooth {
         model = model.smoothed(crease);
     }
-    let image = crate::model_render::render_model_image(
+    let image = crate::model_render::render_model_lines(
         &model,
         &args.view,
-        args.width,
-        args.height,
+        (args.width, args.height),
         args.algo,
         args.format,
+        args.lines,
     )?;
     out.write(&crate::png_io::encode_for(&image, &args.out)?)
 }
@@ -630,17 +654,33 @@ mod tests {
         };
         assert_eq!(got.view, want);
         assert_eq!(got.smooth, None);
+        assert_eq!(got.lines, Lines::Off);
         let a = [
             "render-model",
             "--model=m.obj",
             "--out=m.png",
             "--smooth",
             "30",
+            "--lines=outline",
         ];
         let Command::Render(RenderArgs::Model(got)) = parse(&a).unwrap() else {
             panic!()
         };
         assert_eq!(got.smooth, Some(30.0));
+        assert_eq!(got.lines, Lines::Outline);
+        let mut hidden = a;
+        hidden[5] = "--lines=hidden";
+        let Command::Render(RenderArgs::Model(got)) = parse(&hidden).unwrap() else {
+            panic!()
+        };
+        assert_eq!(got.lines, Lines::Hidden);
+        let mut bad = a;
+        bad[5] = "--lines=dashed";
+        let e = parse(&bad).unwrap_err().to_string();
+        assert!(
+            e.contains("unknown --lines `dashed`: accepted names are hidden, outline"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -19,7 +19,9 @@ use crate::model::{LoadedModel, ModelError};
 use crate::render::{draw, resolve, Algo, Format, Image, Structure};
 use crate::structure::closed_convex;
 use crate::SimError;
-use zrow::{Affine, Config, Cull, ModelScene, Object, Requirements, Scalar};
+use zrow::pixelcolor::RgbColor;
+use zrow::shading::Shading;
+use zrow::{Affine, Config, Cull, ModelScene, Object, Requirements, Rgb565, Scalar};
 use zrow::{Scene, Q16_16};
 
 pub use zrow_model::camera::{
@@ -121,9 +123,15 @@ fn model_image<N: Scalar + Send + Sync>(
     height: u16,
     algo: Algo,
     cull: Cull,
+    shading: Option<Shading>,
 ) -> Result<(Image, Requirements), SimError> {
     with_scene::<N, _>(model, view, width, height, |scene, cfg| {
-        let cfg = &Config { cull, ..*cfg };
+        let shading = shading.unwrap_or(cfg.shading);
+        let cfg = &Config {
+            cull,
+            shading,
+            ..*cfg
+        };
         let req = measure(model, scene, cfg)?;
         let image = draw(
             algo,
@@ -150,9 +158,103 @@ pub fn render_model_culled(
     cull: Cull,
 ) -> Result<(Image, Requirements), SimError> {
     match format {
-        Format::Q16_16 => model_image::<Q16_16>(model, view, width, height, algo, cull),
-        Format::F32 => model_image::<f32>(model, view, width, height, algo, cull),
+        Format::Q16_16 => model_image::<Q16_16>(model, view, width, height, algo, cull, None),
+        Format::F32 => model_image::<f32>(model, view, width, height, algo, cull, None),
     }
+}
+
+/// How `render-model` draws a model: its shaded surfaces, a hidden-line drawing (its visible
+/// edges in [`INK`] on [`PAPER`]), or the surfaces with their visible edges over them in
+/// [`OUTLINE_INK`] (`--lines hidden|outline`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Lines {
+    /// Shaded surfaces only.
+    #[default]
+    Off,
+    /// Visible edges only.
+    Hidden,
+    /// Shaded surfaces and their visible edges.
+    Outline,
+}
+
+impl Lines {
+    /// The names `--lines` accepts.
+    pub const ALL: &'static [(&'static str, Lines)] =
+        &[("hidden", Lines::Hidden), ("outline", Lines::Outline)];
+}
+
+/// A hidden-line drawing's lines.
+pub const INK: Rgb565 = Rgb565::BLACK;
+/// A hidden-line drawing's background.
+pub const PAPER: Rgb565 = Rgb565::WHITE;
+/// The lines over the surfaces of an outline drawing.
+pub const OUTLINE_INK: Rgb565 = Rgb565::WHITE;
+
+/// [`render_model_image`] with `lines`: the visible edges come from a frame of facets
+/// ([`zrow::shading::Shading::Facets`]) drawn by the same method, turned into lines 1 px wide
+/// by [`zrow::lines::HiddenLines`] (an edge is drawn where one of the surfaces it separates is
+/// visible; the diagonal inside a flat quad is not an edge). An outline drawing draws the
+/// shaded frame too.
+pub fn render_model_lines(
+    model: &LoadedModel,
+    view: &View,
+    (width, height): (u16, u16),
+    algo: Algo,
+    format: Format,
+    lines: Lines,
+) -> Result<Image, SimError> {
+    if lines == Lines::Off {
+        return render_model_image(model, view, width, height, algo, format);
+    }
+    let cull = Config::model(width, height).cull;
+    let facets = Some(Shading::Facets);
+    let (facets, _) = match format {
+        Format::Q16_16 => model_image::<Q16_16>(model, view, width, height, algo, cull, facets),
+        Format::F32 => model_image::<f32>(model, view, width, height, algo, cull, facets),
+    }?;
+    let edges = hidden_lines(&facets);
+    let mut image = match lines {
+        Lines::Outline => render_model_image(model, view, width, height, algo, format)?,
+        _ => Image {
+            pixels: vec![PAPER; facets.pixels.len()],
+            ..facets
+        },
+    };
+    let ink = if lines == Lines::Outline {
+        OUTLINE_INK
+    } else {
+        INK
+    };
+    for (p, _) in image.pixels.iter_mut().zip(&edges).filter(|(_, &e)| e) {
+        *p = ink;
+    }
+    Ok(image)
+}
+
+/// Which pixels of a frame of facets are on a visible edge: the frame's rows through zrow's
+/// [`zrow::lines::HiddenLines`], top to bottom, as the MCU streams them.
+pub fn hidden_lines(facets: &Image) -> Vec<bool> {
+    use zrow::lines::HiddenLines;
+    use zrow::{FrameBuffer, Row, RowSink};
+    let w = facets.width as usize;
+    let mut out = vec![Rgb565::BLACK; facets.pixels.len()];
+    let frame = FrameBuffer::new(&mut out, w);
+    let mut lines = Box::new(HiddenLines::<_, { crate::render::HOST_WIDTH }>::new(
+        frame,
+        facets.height,
+        Rgb565::WHITE,
+        Rgb565::BLACK,
+    ));
+    for (y, row) in facets.pixels.chunks(w.max(1)).enumerate() {
+        let row = Row::<f32> {
+            y: y as u16,
+            color: row,
+            depth: &[],
+        };
+        let Ok(()) = lines.write_row(&row);
+    }
+    drop(lines);
+    out.iter().map(|&c| c == Rgb565::WHITE).collect()
 }
 
 /// The scene's structure: one object whose mesh is a closed convex solid?

@@ -2,7 +2,10 @@
 //! malformed or oversized model gets a one-line error naming the file and where.
 //!
 //! Golden frames: `host-sim/tests/golden/model_NAME.FORMAT.png`, each demo model at 240x240
-//! from the default view, and `model_NAME.smooth.FORMAT.png` smooth shaded (`--smooth 45`). To accept a deliberate change, re-bless and review the new PNGs:
+//! from the default view, `model_NAME.smooth.FORMAT.png` smooth shaded (`--smooth 45`), and
+//! for the torus and the cube `model_NAME.lines.FORMAT.png` (`--lines hidden`) and
+//! `model_NAME.outline.FORMAT.png` (`--smooth 45 --lines outline`). To accept a deliberate
+//! change, re-bless and review the new PNGs:
 //!
 //! ```text
 //! ZROW_BLESS=1 CARGO_TARGET_DIR=/work/target-model cargo test -p zrow-sim --test model
@@ -15,7 +18,7 @@ mod support;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use zrow_sim::model::{self, Origin};
-use zrow_sim::model_render::{render_model_image, View};
+use zrow_sim::model_render::{render_model_image, render_model_lines, Lines, View};
 use zrow_sim::png_io;
 use zrow_sim::render::{Algo, Format, HOST_ACTIVE};
 
@@ -367,22 +370,48 @@ fn a_model_beyond_the_host_capacities_names_the_capacity_and_its_need() {
 // ---------------------------------------------------------------------------------------------
 // Golden frames
 
-/// `smooth`: drawn with smooth shading (`--smooth 45`), its frame `model_NAME.smooth.FORMAT.png`.
-fn check_golden(name: &str, format: Format, smooth: bool, bless: bool) -> Result<(), String> {
+/// How a golden frame is drawn, and the part of its name that says so.
+#[derive(Clone, Copy, PartialEq)]
+enum Kind {
+    /// `model_NAME.FORMAT.png`: flat shaded.
+    Flat,
+    /// `model_NAME.smooth.FORMAT.png`: smooth shading (`--smooth 45`).
+    Smooth,
+    /// `model_NAME.lines.FORMAT.png`: a hidden-line drawing (`--lines hidden`).
+    Lines,
+    /// `model_NAME.outline.FORMAT.png`: smooth shaded with its visible edges
+    /// (`--smooth 45 --lines outline`).
+    Outline,
+}
+
+fn check_golden(name: &str, format: Format, kind: Kind, bless: bool) -> Result<(), String> {
     let stem = name.split('.').next().unwrap();
-    let stem = if smooth {
-        format!("{stem}.smooth")
-    } else {
-        stem.to_owned()
+    let stem = match kind {
+        Kind::Flat => stem.to_owned(),
+        Kind::Smooth => format!("{stem}.smooth"),
+        Kind::Lines => format!("{stem}.lines"),
+        Kind::Outline => format!("{stem}.outline"),
     };
     let reference = golden_dir().join(format!("model_{stem}.{}.png", format.name()));
     let actual_path = golden_dir().join(format!("model_{stem}.{}.actual.png", format.name()));
     let mut m = model::load(&models_dir().join(name)).map_err(|e| e.to_string())?;
-    if smooth {
+    if matches!(kind, Kind::Smooth | Kind::Outline) {
         m = m.smoothed(45.0);
     }
-    let image = render_model_image(&m, &View::default(), SIZE, SIZE, Algo::Scanline, format)
-        .map_err(|e| e.to_string())?;
+    let lines = match kind {
+        Kind::Lines => Lines::Hidden,
+        Kind::Outline => Lines::Outline,
+        _ => Lines::Off,
+    };
+    let image = render_model_lines(
+        &m,
+        &View::default(),
+        (SIZE, SIZE),
+        Algo::Scanline,
+        format,
+        lines,
+    )
+    .map_err(|e| e.to_string())?;
     support::compare_golden(&image, &reference, &actual_path, bless)
 }
 
@@ -392,8 +421,12 @@ fn golden_model_frames() {
     let mut failures = Vec::new();
     for name in DEMOS {
         for &(_, format) in Format::ALL {
-            for smooth in [false, true] {
-                if let Err(e) = check_golden(name, format, smooth, bless) {
+            let mut kinds = vec![Kind::Flat, Kind::Smooth];
+            if name.starts_with("torus") || name.starts_with("cube") {
+                kinds.extend([Kind::Lines, Kind::Outline]);
+            }
+            for kind in kinds {
+                if let Err(e) = check_golden(name, format, kind, bless) {
                     failures.push(e);
                 }
             }
@@ -553,6 +586,55 @@ fn every_method_draws_the_same_smooth_model() {
                     .filter(|(a, b)| a != b)
                     .count();
                 assert_eq!(differ, 0, "{name} {algo_name} {format:?}: pixels differ");
+            }
+        }
+    }
+}
+
+/// Hidden lines: every method draws the same hidden-line and outline drawings of the torus and
+/// the icosphere as the scan-line method does, in both formats; a hidden-line drawing has
+/// lines and nothing else (ink on paper), and an outline drawing is the shaded frame with the
+/// same lines over it.
+#[test]
+fn every_method_draws_the_same_lines() {
+    use zrow_sim::model_render::{INK, OUTLINE_INK, PAPER};
+    for name in ["icosphere.stl", "torus.off"] {
+        let flat = model::load(&models_dir().join(name)).unwrap();
+        for &(_, format) in Format::ALL {
+            let draw = |algo, lines| {
+                render_model_lines(&flat, &View::default(), (96, 96), algo, format, lines)
+                    .unwrap_or_else(|e| panic!("{name} {algo:?}: {e}"))
+            };
+            let hidden = draw(Algo::Scanline, Lines::Hidden);
+            let ink = hidden.pixels.iter().filter(|&&p| p == INK).count();
+            assert!(ink > 200, "{name}: {ink} line pixels");
+            assert!(hidden.pixels.iter().all(|&p| p == INK || p == PAPER));
+            let shaded =
+                render_model_image(&flat, &View::default(), 96, 96, Algo::Scanline, format)
+                    .unwrap();
+            let outline = draw(Algo::Scanline, Lines::Outline);
+            for ((&o, &h), &s) in outline
+                .pixels
+                .iter()
+                .zip(&hidden.pixels)
+                .zip(&shaded.pixels)
+            {
+                assert_eq!(o, if h == INK { OUTLINE_INK } else { s });
+            }
+            for &(algo_name, algo) in Algo::ALL {
+                if matches!(algo, Algo::CullOnly | Algo::Ordered | Algo::Auto) {
+                    continue; // exact only where nothing overlaps: the torus overlaps
+                }
+                let differ = draw(algo, Lines::Hidden)
+                    .pixels
+                    .iter()
+                    .zip(&hidden.pixels)
+                    .filter(|(a, b)| a != b)
+                    .count();
+                assert_eq!(
+                    differ, 0,
+                    "{name} {algo_name} {format:?}: line pixels differ"
+                );
             }
         }
     }
