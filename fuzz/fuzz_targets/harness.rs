@@ -2,12 +2,13 @@
 //! the stable fixed-seed run (`crates/zrow/tests/fuzz_stable.rs`, in `cargo test` and CI).
 //!
 //! Any bytes → a scene (screen or model mode, Q16.16 or f32, any bit pattern for positions,
-//! camera and transform, out-of-range indices, faces of 0..12 vertices, any alpha, flat or
-//! smooth shaded with any vertex normals) → every
+//! camera and transform, out-of-range indices, faces of 0..12 vertices, any alpha, flat,
+//! smooth shaded with any vertex normals, or as facets for hidden lines) → every
 //! method at small capacities. The contract checked: no panic; rows arrive top to bottom, each
 //! once, all of them on success and none on error (nothing drawn is corrupted).
 
 use embedded_graphics_core::pixelcolor::Rgb565;
+use zrow::lines::HiddenLines;
 use zrow::{
     abuffer::ABuffer, bsp::Bsp, cullonly::CullOnly, depthsort::DepthSort, ordered::Ordered,
     tiled::Tiled, warnock::Warnock, Affine, Camera, Config, Cull, Face, IntensityPlane, Light,
@@ -71,6 +72,34 @@ fn run<N: Scalar, R: Renderer<N>>(
     }
 }
 
+/// A frame of facets through the hidden-line sink: the same row contract (its rows carry no
+/// depth), every row once on success, none on error.
+fn lines<N: Scalar>(scene: &impl Scene<N>, cfg: &Config) {
+    struct Lines {
+        next: u16,
+    }
+    impl<N> RowSink<N> for Lines {
+        type Error = ();
+        fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), ()> {
+            assert_eq!(
+                row.y, self.next,
+                "hidden lines: rows top to bottom, each once"
+            );
+            assert!(row.depth.is_empty());
+            self.next += 1;
+            Ok(())
+        }
+    }
+    let (white, black) = (Rgb565::new(31, 63, 31), Rgb565::new(0, 0, 0));
+    let mut sink = HiddenLines::<_, 64>::new(Lines { next: 0 }, cfg.height, white, black);
+    let drawn = Scanline::<N, 64, 64, 16, 16>::new().render(scene, cfg, &mut sink);
+    let rows = sink.into_inner().next;
+    match drawn {
+        Ok(_) => assert_eq!(rows, cfg.height, "hidden lines: every row on success"),
+        Err(_) => assert_eq!(rows, 0, "hidden lines: no row before an error"),
+    }
+}
+
 fn every_method<N: Scalar>(scene: &impl Scene<N>, cfg: &Config) -> Reach {
     let r = &mut Reach::default();
     run(&mut Scanline::<N, 64, 64, 16, 16>::new(), scene, cfg, r);
@@ -78,6 +107,9 @@ fn every_method<N: Scalar>(scene: &impl Scene<N>, cfg: &Config) -> Reach {
     type Smooth<N> =
         Scanline<N, 64, 64, 16, 16, u16, zrow::scanline::Uncued, [IntensityPlane<N>; 16]>;
     run(&mut Smooth::<N>::new(), scene, cfg, r);
+    if cfg.shading.is_facets() {
+        lines(scene, cfg);
+    }
     run(&mut ZBuffer::<N, 64, 64>::new(), scene, cfg, r);
     run(&mut Tiled::<N, 64, 8, 16, 64>::new(), scene, cfg, r);
     run(&mut DepthSort::<N, 64, 16, 64, 256>::new(), scene, cfg, r);
@@ -139,6 +171,10 @@ fn scene<N: Scalar>(data: &[u8], q16: bool) -> Reach {
         .collect();
     let mesh = Mesh::new(&vertices, &faces);
     if mode & 1 == 0 {
+        // Mode bit 3 in screen mode: facets, for hidden lines.
+        if mode & 8 != 0 {
+            cfg.shading = zrow::shading::Shading::Facets;
+        }
         every_method::<N>(&ScreenScene { mesh }, &cfg)
     } else {
         let f = |b: &mut Bytes<'_>| f32::from_bits(b.u32());
@@ -185,10 +221,15 @@ fn scene<N: Scalar>(data: &[u8], q16: bool) -> Reach {
             mesh: &mesh,
             transform,
         }];
-        if mode & 8 != 0 {
-            cfg.shading = zrow::shading::Shading::Gouraud {
-                dither: mode & 16 != 0,
-            };
+        match mode & 24 {
+            0 => {}
+            // Bit 4 alone: facets, for hidden lines.
+            16 => cfg.shading = zrow::shading::Shading::Facets,
+            _ => {
+                cfg.shading = zrow::shading::Shading::Gouraud {
+                    dither: mode & 16 != 0,
+                }
+            }
         }
         let scene = ModelScene {
             objects: &objects,
