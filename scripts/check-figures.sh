@@ -8,7 +8,7 @@
 # Checked: both firmwares' flash and static RAM, the bytes per frame on the wire and the board
 # in the loop's frame rates and stack peaks ("On the board"), the converted torus's scan-line RAM
 # and the converted icosphere's flash, plain and compact ("Bring your own model"), the emulated cube counts of cull-only and the
-# scan-line method ("Methods"), the emulated torus smooth and flat ("Smooth shading"), and the scan-line RAM column of the methods table against
+# scan-line method ("Methods"), the emulated torus smooth and flat ("Smooth shading") and as hidden lines ("Hidden-line drawings"), and the scan-line RAM column of the methods table against
 # docs/methods/foley.md (which its own command writes).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -115,6 +115,8 @@ expect "emulated cube, scan-line" "the scan-line method's $(count scanline) M"
 torus() { awk -v s="$1" '$1 == "method=scanline" && $2 == "scene=" s && $3 == "format=q16.16" {
   split($5, f, "="); printf "%.2f", f[2] / 1e6 }' "$bench"; }
 expect "emulated torus, smooth and flat" "$(torus mesh1k-smooth) M instructions smooth against $(torus mesh1k) M flat"
+# ... and as a hidden-line drawing ("Hidden-line drawings").
+expect "emulated torus, hidden lines and flat" "costs $(torus mesh1k-lines) M instructions against $(torus mesh1k) M flat-shaded"
 
 # The methods table's scan-line RAM, as docs/methods/foley.md has it.
 ram_cols="$(awk -F'|' '$2 ~ /^ scanline $/ && $5 ~ /KiB/ { gsub(/ |KiB/, "", $5); gsub(/ |KiB/, "", $8); print $5 " / " $8 " KiB"; exit }' docs/methods/foley.md)"

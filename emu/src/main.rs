@@ -47,7 +47,7 @@ use cortex_m_semihosting::{debug, hprintln};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use zrow::presets::{DepthStore, Preset, PRESETS};
 use zrow::{Config, Renderer, Scanline, Scene, Q16_16};
-use zrow_scenes::{Format, FrameHash, FOLEY, NAMES, PRESET_SCENES};
+use zrow_scenes::{Format, FrameHash, FOLEY, LINES, NAMES, PRESET_SCENES};
 
 include!("methods.rs");
 include!("presets.rs");
@@ -168,7 +168,8 @@ struct Line {
 
 /// The `ram=` figure: the scan-line's formula at the frame's requirements (with the affine
 /// cue's per-edge state only if the frame uses that cue, an intensity plane per polygon only
-/// if it is smooth shaded), else `RAM_BYTES`.
+/// if it is smooth shaded), else `RAM_BYTES`; a hidden-line frame adds its sink's rows
+/// ([`bench_lines`]).
 fn ram<N: Format, R: Renderer<N>>(
     req: &zrow::Requirements,
     affine_cue: bool,
@@ -187,17 +188,33 @@ fn ram<N: Format, R: Renderer<N>>(
     }
 }
 
-/// Renders `scene` with `renderer` once, between the markers, and reports it.
+/// Renders `scene` with `renderer` once, between the markers, into the frame hash, and
+/// reports it.
 fn frame<N: Format, R: Renderer<N>>(
     renderer: &mut R,
     scene: &dyn Scene<N>,
     cfg: &Config,
     tris: usize,
 ) -> Result<Line, &'static str> {
+    frame_into(renderer, scene, cfg, tris, FrameHash::default(), |s| s.0, 0)
+}
+
+/// [`frame`] into `sink`, whose hash `hash` takes at the end and whose rows add `sink_ram`
+/// to the `ram=` figure (a hidden-line frame's [`Lines`]). A function of its own so that only
+/// the renderers that draw hidden lines are built for a second sink (code the optimiser lays
+/// out again changes other frames' counts).
+fn frame_into<N: Format, R: Renderer<N>, S: zrow::RowSink<N>>(
+    renderer: &mut R,
+    scene: &dyn Scene<N>,
+    cfg: &Config,
+    tris: usize,
+    mut sink: S,
+    hash: impl FnOnce(S) -> u64,
+    sink_ram: usize,
+) -> Result<Line, &'static str> {
     let req = zrow::requirements(scene, cfg).map_err(|_| "requirements failed")?;
     let cue = zrow::shading::Cue::for_frame(scene, cfg).map_err(|_| "cue failed")?;
     let affine_cue = cue.is_some_and(|c| c.interpolation == zrow::shading::Interpolation::Affine);
-    let mut sink = FrameHash::default();
     let renderer = black_box(renderer);
     zrow_bench_start();
     let result = renderer.render(scene, cfg, &mut sink);
@@ -206,8 +223,8 @@ fn frame<N: Format, R: Renderer<N>>(
     result.map_err(|_| "render failed (capacity or scene error)")?;
     Ok(Line {
         tris,
-        ram: ram::<N, R>(&req, affine_cue, cfg.shading.is_smooth()),
-        hash: sink.0,
+        ram: ram::<N, R>(&req, affine_cue, cfg.shading.is_smooth()) + sink_ram,
+        hash: hash(sink),
     })
 }
 
@@ -243,6 +260,17 @@ fn report<N: Format>(
 fn bench_format<N: Format, R: Renderer<N>>(renderer: &mut R, name: &str) -> bool {
     let line = zrow_scenes::with_scene::<N, _>(name, 0.0, |scene, cfg, tris| {
         frame(renderer, scene, cfg, tris)
+    });
+    report::<N>("", R::NAME, name, line.unwrap_or(Err("unknown scene")))
+}
+
+/// Benchmarks hidden-line scene `name` (zrow-scenes' `LINES`: facets) in format `N` with
+/// `renderer`, through the [`Lines`] sink; false after an error line.
+fn bench_lines<N: Format, R: Renderer<N>>(renderer: &mut R, name: &str) -> bool {
+    let line = zrow_scenes::with_scene::<N, _>(name, 0.0, |scene, cfg, tris| {
+        let lines = Lines::new(FrameHash::default(), cfg.height, Rgb565::WHITE, Rgb565::BLACK);
+        let rows = core::mem::size_of::<Lines>() - core::mem::size_of::<FrameHash>();
+        frame_into(renderer, scene, cfg, tris, lines, |l| l.into_inner().0, rows)
     });
     report::<N>("", R::NAME, name, line.unwrap_or(Err("unknown scene")))
 }
@@ -375,6 +403,16 @@ fn main() -> ! {
         };
     }
     for_each_structured!(structured);
+    // The hidden-line scenes, by the standard renderer (no static of their own: the bench's
+    // RAM is nearly all taken).
+    for name in LINES {
+        let line = shelf
+            .get::<Standard<Q16_16>>()
+            .map(|r| bench_lines(r, name));
+        ok &= line.unwrap_or_else(|| no_renderer("Q16.16", name));
+        let line = shelf.get::<Standard<f32>>().map(|r| bench_lines(r, name));
+        ok &= line.unwrap_or_else(|| no_renderer("f32", name));
+    }
     for preset in PRESETS.iter() {
         macro_rules! draw {
             ($t:ty) => {

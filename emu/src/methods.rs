@@ -42,6 +42,12 @@ macro_rules! for_each_structured {
     };
 }
 
+/// The hidden-line sink the hidden-line scenes' frames (zrow-scenes' `LINES`: `mesh1k-lines`,
+/// drawn after the structured ones by the standard renderer) go through: 240-pixel rows, into
+/// the hash.
+type Lines = zrow::lines::HiddenLines<FrameHash, 240>;
+
+
 /// The scan-line renderer for smooth shading (`zrow_scenes::SMOOTH`): capacities for the
 /// torus with room to spare (it needs 500 vertex slots, 454 polygons, 67 active), no affine
 /// cue state, an intensity plane per polygon (`zrow::scanline_for!(N, REQ, gouraud)`).

@@ -198,7 +198,7 @@ pub fn mesh<N: Format>(name: &str) -> Option<Mesh<'static, N>> {
     let triangles = Mesh::triangles;
     Some(match name {
         "cube" => cube_with(&CUBE_FACES),
-        "mesh1k" => compact_triangles(&TORUS_I16, &TORUS_TRIANGLES, &TORUS_COLORS),
+        "mesh1k" | "mesh1k-lines" => compact_triangles(&TORUS_I16, &TORUS_TRIANGLES, &TORUS_COLORS),
         // The torus with its surface normals at the vertices, for smooth shading.
         "mesh1k-smooth" => compact_triangles(&TORUS_I16, &TORUS_TRIANGLES, &TORUS_COLORS)
             .with_vertex_normals(compact(&TORUS_NORMALS_I16)),
@@ -275,10 +275,15 @@ pub fn light<N: Scalar>() -> Option<Light<N>> {
 /// intensity planes draws it: `zrow::scanline_for!(N, REQ, gouraud)`).
 pub const SMOOTH: [&str; 1] = ["mesh1k-smooth"];
 
+/// The hidden-line scenes (the `lines` feature): `mesh1k-lines`, the torus configured for
+/// [`zrow::shading::Shading::Facets`], to be drawn into a `zrow::lines::HiddenLines` sink.
+pub const LINES: [&str; 1] = ["mesh1k-lines"];
+
 /// Calls `f` with the named scene, its configuration (240×240) and its face count; `None` for
 /// an unknown name. `angle` (radians) turns model scenes about the vertical axis. Names: the
-/// standard scenes ([`NAMES`]), the demos ([`DEMOS`]), the comparison scenes ([`FOLEY`]) and
-/// the smooth-shaded ones ([`SMOOTH`]).
+/// standard scenes ([`NAMES`]), the demos ([`DEMOS`]), the comparison scenes ([`FOLEY`]), the
+/// smooth-shaded ones ([`SMOOTH`]) and, with the `lines` feature, the hidden-line ones
+/// ([`LINES`]).
 pub fn with_scene<N: Format, R>(
     name: &str,
     angle: f32,
@@ -301,6 +306,16 @@ pub fn with_scene_math<N: Format, R>(
     let faces = mesh.faces.len();
     if name == "random400" || FOLEY.contains(&name) {
         return Some(f(&ScreenScene { mesh }, &Config::screen(SIZE, SIZE), faces));
+    }
+    #[cfg(feature = "lines")]
+    if LINES.contains(&name) {
+        return model(mesh, angle, math, |scene, cfg, faces| {
+            let cfg = Config {
+                shading: zrow::shading::Shading::Facets,
+                ..*cfg
+            };
+            f(scene, &cfg, faces)
+        });
     }
     if SMOOTH.contains(&name) {
         return model(mesh, angle, math, |scene, cfg, faces| {

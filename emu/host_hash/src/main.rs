@@ -18,7 +18,7 @@
 use std::process::ExitCode;
 use zrow::presets::{DepthStore, Preset, PRESETS};
 use zrow::{Renderer, Scanline, Q16_16};
-use zrow_scenes::{Format, FrameHash, FOLEY, NAMES, PRESET_SCENES};
+use zrow_scenes::{Format, FrameHash, FOLEY, LINES, NAMES, PRESET_SCENES};
 
 include!("../../src/methods.rs");
 include!("../../src/presets.rs");
@@ -33,7 +33,15 @@ fn line<N: Format, R: Renderer<N> + Default>(name: &str) -> bool {
     let mut renderer = Box::new(R::default());
     let mut sink = FrameHash::default();
     let result = zrow_scenes::with_scene::<N, _>(name, 0.0, |scene, cfg, tris| {
-        renderer.render(scene, cfg, &mut sink).map(|_| tris)
+        if !cfg.shading.is_facets() {
+            return renderer.render(scene, cfg, &mut sink).map(|_| tris);
+        }
+        // A frame of facets goes through the hidden-line sink, as on the bench.
+        let (white, black) = (zrow::Rgb565::new(31, 63, 31), zrow::Rgb565::new(0, 0, 0));
+        let mut lines = Lines::new(FrameHash::default(), cfg.height, white, black);
+        let drawn = renderer.render(scene, cfg, &mut lines).map(|_| tris);
+        sink = lines.into_inner();
+        drawn
     });
     report::<N>("", R::NAME, name, result, sink)
 }
@@ -111,6 +119,10 @@ fn all() -> bool {
         };
     }
     for_each_structured!(structured);
+    for name in LINES {
+        ok &= line::<Q16_16, Standard<Q16_16>>(name);
+        ok &= line::<f32, Standard<f32>>(name);
+    }
     for preset in PRESETS.iter() {
         macro_rules! draw {
             ($t:ty) => {
