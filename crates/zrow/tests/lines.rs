@@ -1,4 +1,4 @@
-//! Hidden-line drawings: the seeds' cube (only the three visible faces' edges, no diagonal, no
+//! Hidden-line drawings: the textbook cube (only the three visible faces' edges, no diagonal, no
 //! hidden edge), every method drawing the same facets, the streaming sink against a whole-frame
 //! rule, and the typed errors.
 
@@ -16,7 +16,7 @@ use zrow::{
 /// The frame's size.
 const S: usize = 64;
 
-/// The unit cube's corner (a, b, c) projected as the seeds' figure shows it (isometric, (1,1,1)
+/// The unit cube's corner (a, b, c) projected as the textbook figure shows it (isometric, (1,1,1)
 /// nearest, (0,0,0) hidden behind it): pixels and depth.
 fn corner(a: f64, b: f64, c: f64) -> [f64; 3] {
     [
@@ -110,7 +110,7 @@ fn distance(p: [f64; 2], a: [f64; 3], b: [f64; 3]) -> f64 {
     ((p[0] - x).powi(2) + (p[1] - y).powi(2)).sqrt()
 }
 
-/// The seeds' first figure: the cube's hidden-line drawing has the nine edges of its three
+/// The textbook's first figure: the cube's hidden-line drawing has the nine edges of its three
 /// visible faces — every line pixel within a pixel of one, every one of them drawn along its
 /// length — and nothing along the three hidden edges or the six diagonals, in every method.
 fn cube_has_only_the_visible_edges<N: Scalar>() {
@@ -216,17 +216,17 @@ fn cube_has_only_the_visible_edges<N: Scalar>() {
 }
 
 #[test]
-fn seeds_cube_hidden_lines_q16() {
+fn textbook_cube_hidden_lines_q16() {
     cube_has_only_the_visible_edges::<Q16_16>();
 }
 
 #[test]
-fn seeds_cube_hidden_lines_q24() {
+fn textbook_cube_hidden_lines_q24() {
     cube_has_only_the_visible_edges::<Q24_8>();
 }
 
 #[test]
-fn seeds_cube_hidden_lines_f32() {
+fn textbook_cube_hidden_lines_f32() {
     cube_has_only_the_visible_edges::<f32>();
 }
 
