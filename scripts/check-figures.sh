@@ -122,4 +122,15 @@ expect "emulated torus, hidden lines and flat" "costs $(torus mesh1k-lines) M in
 ram_cols="$(awk -F'|' '$2 ~ /^ scanline $/ && $5 ~ /KiB/ { gsub(/ |KiB/, "", $5); gsub(/ |KiB/, "", $8); print $5 " / " $8 " KiB"; exit }' docs/methods/foley.md)"
 expect "methods table, scan-line RAM @100 / @2,500" "| $ram_cols |"
 
+# Smooth shading against the f64 reference, as docs/presets/presets.md has it (Q16.16 rows).
+shade_err() { # the drawing's name: "max mean"
+  awk -F'|' -v d="$1" '$2 ~ ("^ " d " \\(") && $3 ~ /q16.16/ {
+    match($7, /max [0-9.]+ \/ mean [0-9.]+/); split(substr($7, RSTART, RLENGTH), f, " ");
+    print f[2], f[5]; exit }' docs/presets/presets.md
+}
+read -r g_max g_mean < <(shade_err gouraud)
+read -r d_max _ < <(shade_err "gouraud \\+ dither")
+expect "smooth torus against the f64 reference" "within $g_max LSB of the f64"
+expect "smooth torus, mean and dithered" "($g_mean LSB mean), $d_max LSB dithered"
+
 exit "$fail"

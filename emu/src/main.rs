@@ -395,9 +395,13 @@ fn main() -> ! {
     }
     for_each_method!(run);
     macro_rules! structured {
-        ($t:ty, $n:ty, $scene:expr) => {
+        ($t:ty, $n:ty, $scenes:expr) => {
             match cortex_m::singleton!(: $t = <$t>::new()) {
-                Some(r) => ok &= bench_format::<$n, _>(r, $scene),
+                Some(r) => {
+                    for name in $scenes {
+                        ok &= bench_format::<$n, _>(r, name);
+                    }
+                }
                 None => unreachable!("each singleton is taken once"),
             }
         };

@@ -29,16 +29,17 @@ macro_rules! for_each_method {
     };
 }
 
-/// Calls `$run!(TYPE, FORMAT, "scene")` for the cheap methods `auto` picks where a scene's
-/// structure allows (zrow::structure): back-face culling alone on the cube, one closed convex
-/// solid (compare with the scan-line lines for the same scene); then the scan-line method
-/// smooth shading the torus (`mesh1k-smooth`: compare with `mesh1k`).
+/// Calls `$run!(TYPE, FORMAT, SCENES)` (one renderer of the type for the scenes, in order) for
+/// the cheap methods `auto` picks where a scene's structure allows (zrow::structure):
+/// back-face culling alone on the cube, one closed convex solid (compare with the scan-line
+/// lines for the same scene); then the scan-line method smooth shading the torus
+/// (zrow-scenes' `SMOOTH`: `mesh1k-smooth`, compare with `mesh1k`, and `mesh1k-dither`).
 macro_rules! for_each_structured {
     ($run:ident) => {
-        $run!(zrow::cullonly::CullOnly<Q16_16, 240, 64, 256>, Q16_16, "cube");
-        $run!(zrow::cullonly::CullOnly<f32, 240, 64, 256>, f32, "cube");
-        $run!(Smooth<Q16_16>, Q16_16, "mesh1k-smooth");
-        $run!(Smooth<f32>, f32, "mesh1k-smooth");
+        $run!(zrow::cullonly::CullOnly<Q16_16, 240, 64, 256>, Q16_16, ["cube"]);
+        $run!(zrow::cullonly::CullOnly<f32, 240, 64, 256>, f32, ["cube"]);
+        $run!(Smooth<Q16_16>, Q16_16, zrow_scenes::SMOOTH);
+        $run!(Smooth<f32>, f32, zrow_scenes::SMOOTH);
     };
 }
 

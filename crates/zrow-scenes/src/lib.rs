@@ -200,8 +200,10 @@ pub fn mesh<N: Format>(name: &str) -> Option<Mesh<'static, N>> {
         "cube" => cube_with(&CUBE_FACES),
         "mesh1k" | "mesh1k-lines" => compact_triangles(&TORUS_I16, &TORUS_TRIANGLES, &TORUS_COLORS),
         // The torus with its surface normals at the vertices, for smooth shading.
-        "mesh1k-smooth" => compact_triangles(&TORUS_I16, &TORUS_TRIANGLES, &TORUS_COLORS)
-            .with_vertex_normals(compact(&TORUS_NORMALS_I16)),
+        "mesh1k-smooth" | "mesh1k-dither" => {
+            compact_triangles(&TORUS_I16, &TORUS_TRIANGLES, &TORUS_COLORS)
+                .with_vertex_normals(compact(&TORUS_NORMALS_I16))
+        }
         "random400" => triangles(N::random400(), &RANDOM400_TRIANGLES, &RANDOM400_COLORS),
         "foley100" => triangles(N::foley100(), &FOLEY100_TRIANGLES, &FOLEY100_COLORS),
         "foley2500" => triangles(N::foley2500(), &FOLEY2500_TRIANGLES, &FOLEY2500_COLORS),
@@ -272,8 +274,9 @@ pub fn light<N: Scalar>() -> Option<Light<N>> {
 
 /// The smooth-shaded scenes: `mesh1k-smooth`, the torus with its surface normals at the
 /// vertices, configured for [`zrow::shading::Shading::Gouraud`] (a renderer that keeps
-/// intensity planes draws it: `zrow::scanline_for!(N, REQ, gouraud)`).
-pub const SMOOTH: [&str; 1] = ["mesh1k-smooth"];
+/// intensity planes draws it: `zrow::scanline_for!(N, REQ, gouraud)`), and `mesh1k-dither`,
+/// the same dithered.
+pub const SMOOTH: [&str; 2] = ["mesh1k-smooth", "mesh1k-dither"];
 
 /// The hidden-line scenes (the `lines` feature): `mesh1k-lines`, the torus configured for
 /// [`zrow::shading::Shading::Facets`], to be drawn into a `zrow::lines::HiddenLines` sink.
@@ -320,7 +323,9 @@ pub fn with_scene_math<N: Format, R>(
     if SMOOTH.contains(&name) {
         return model(mesh, angle, math, |scene, cfg, faces| {
             let cfg = Config {
-                shading: zrow::shading::Shading::Gouraud { dither: false },
+                shading: zrow::shading::Shading::Gouraud {
+                    dither: name == "mesh1k-dither",
+                },
                 ..*cfg
             };
             f(scene, &cfg, faces)

@@ -17,6 +17,9 @@
 //!   the Rgb565 channels; plus per preset the pixels drawn twice or missed by a watertight fan
 //!   (`docs/extremes.md` item 4) and the depth-resolution threshold (item 17) beside its theory.
 //!
+//! Then smooth shading (dithered or not) and hidden lines on the torus, their cost and error
+//! against the same kind of reference ([`mod@shading`]).
+//!
 //! It writes `OUT/presets.md` (the Pareto table and the details) and `OUT/presets.png` (cost
 //! against error, one point per preset) and prints the table. Options: `--out DIR`,
 //! `--emu FILE`, `--quick` (one scene, short timing: a smoke test, not a measurement).
@@ -28,6 +31,7 @@ mod measure;
 mod plot;
 mod reference;
 mod render;
+mod shading;
 
 use measure::{Errors, Threshold};
 use std::collections::BTreeMap;
@@ -156,8 +160,10 @@ fn run() -> Result<(), String> {
             threshold,
         });
     }
+    let bench = std::fs::read_to_string(&emu).unwrap_or_default();
+    let shaded = shading::rows(&bench, time_for)?;
     std::fs::create_dir_all(&out).map_err(|e| format!("{}: {e}", out.display()))?;
-    let md = report(&rows, &emu, quick);
+    let md = report(&rows, &emu, quick) + &shading::report(&shaded);
     print!("{md}");
     let md_path = out.join("presets.md");
     std::fs::write(&md_path, md).map_err(|e| format!("{}: {e}", md_path.display()))?;

@@ -26,7 +26,7 @@ pub struct Frame {
     pub depth: Vec<f64>,
 }
 
-struct Capture<'a>(&'a mut Frame);
+pub(crate) struct Capture<'a>(pub &'a mut Frame);
 
 impl<N: Scalar> RowSink<N> for Capture<'_> {
     type Error = Infallible;
@@ -111,7 +111,7 @@ macro_rules! dispatch {
     };
 }
 
-fn draw<N: Scalar, R: Renderer<N>>(
+pub(crate) fn draw<N: Scalar, R: Renderer<N>>(
     r: &mut R,
     scene: &dyn Scene<N>,
     cfg: &Config,

@@ -114,8 +114,10 @@ fn all() -> bool {
     }
     for_each_method!(run);
     macro_rules! structured {
-        ($t:ty, $n:ty, $scene:expr) => {
-            ok &= line::<$n, $t>($scene);
+        ($t:ty, $n:ty, $scenes:expr) => {
+            for name in $scenes {
+                ok &= line::<$n, $t>(name);
+            }
         };
     }
     for_each_structured!(structured);
