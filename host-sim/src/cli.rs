@@ -38,7 +38,9 @@ pub const USAGE: &str = "\
 zrow-sim: render zrow scenes on the host
 
 usage:
-  zrow-sim [--model FILE] [--paused]   the window: turning demo scenes (and the model, first)
+  zrow-sim [--model FILE [--smooth DEG]] [--paused]
+                      the window: turning demo scenes (and the model, first, smooth shaded
+                      with --smooth)
                       keys: m method, f Q16.16/f32, space pause, s/Right step, n next scene,
                       c culling, q/Esc quit; without SDL or a display it writes zrow-demo.png
   zrow-sim render --screen SCENE.off --out OUT.png [--size WxH] [--algo NAME] [--format FMT]

@@ -10,7 +10,9 @@
 //! [`zrow::requirements()`]) beside the board's RAM ([`BOARD_RAM`]).
 //!
 //! `--model FILE` (OBJ, STL or OFF, see [`crate::model`]) puts the model first: the camera
-//! orbits it under the fixed light of [`crate::model_render`], at the demo's turning angle.
+//! orbits it under the fixed light of [`crate::model_render`], at the demo's turning angle;
+//! with `--smooth DEG` it turns smooth shaded (Gouraud, vertex normals within that crease
+//! angle, as `render-model --smooth`).
 //!
 //! Everything here works without SDL: [`first_frame`] and [`write_png`] give the frame the
 //! window opens on as a PNG. The window itself is `crate::window` (feature `window`).
@@ -60,8 +62,18 @@ pub const DEMO_PIECES: usize = 16384;
 pub const DEMO_BSP_DEPTH: usize = 2048;
 
 /// The demo's renderer: 240-pixel rows and the capacities above (checked against every demo
-/// scene, turned, in both formats, culled or not, by a test).
-pub type DemoScanline<N> = Scanline<N, { SIZE as usize }, DEMO_EDGES, DEMO_POLYGONS, DEMO_ACTIVE>;
+/// scene, turned, in both formats, culled or not, by a test), with an intensity plane per
+/// polygon so that a model loaded with `--smooth` turns smooth shaded.
+pub type DemoScanline<N> = Scanline<
+    N,
+    { SIZE as usize },
+    DEMO_EDGES,
+    DEMO_POLYGONS,
+    DEMO_ACTIVE,
+    u16,
+    [zrow::scanline::EdgeCue<N>; DEMO_ACTIVE],
+    [zrow::IntensityPlane<N>; DEMO_POLYGONS],
+>;
 /// The demo's z-buffer (240×240).
 pub type DemoZBuffer<N> = zrow::ZBuffer<N, { SIZE as usize }, { SIZE as usize }>;
 /// The demo's depth-sort.
@@ -416,7 +428,10 @@ fn scanline_needs<N: zrow::Scalar>(
 ) -> Option<usize> {
     zrow::requirements(scene, cfg)
         .ok()
-        .map(|req| zrow::scanline::ram_bytes::<N>(&req))
+        .map(|req| match cfg.shading.is_smooth() {
+            true => zrow::scanline::ram_bytes_gouraud::<N>(&req),
+            false => zrow::scanline::ram_bytes::<N>(&req),
+        })
 }
 
 /// The two status lines (each at most 40 characters, the width of the 6×10 font).
@@ -513,7 +528,7 @@ pub fn write_png(
 }
 
 /// Options of the demo (`zrow-sim --demo`).
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct DemoArgs {
     /// `--paused`: open frozen on the first frame.
     pub paused: bool,
@@ -524,15 +539,19 @@ pub struct DemoArgs {
     pub frames: Option<u64>,
     /// `--model FILE`: an OBJ, STL or OFF model to orbit (shown first).
     pub model: Option<PathBuf>,
+    /// `--smooth DEG`: the model smooth shaded, its vertex normals within this crease angle
+    /// (as `render-model --smooth`).
+    pub smooth: Option<f64>,
 }
 
 /// The demo's flags, for [`is_demo`] and messages (`--demo` alone: the demo as it starts).
-pub const FLAGS: [&str; 5] = [
+pub const FLAGS: [&str; 6] = [
     "--demo",
     "--paused",
     "--dump-expected",
     "--frames",
     "--model",
+    "--smooth",
 ];
 
 /// Whether the arguments (after the program name) are the demo's: none, or starting with one
@@ -568,6 +587,20 @@ pub fn parse_args(args: &[OsString]) -> Result<DemoArgs, SimError> {
             "--paused" if inline.is_none() => out.paused = true,
             "--dump-expected" => out.dump_expected = Some(PathBuf::from(value()?)),
             "--model" => out.model = Some(PathBuf::from(value()?)),
+            "--smooth" => {
+                let v = value()?;
+                let deg = v
+                    .to_str()
+                    .and_then(|v| v.parse::<f64>().ok())
+                    .filter(|d| (0.0..=180.0).contains(d))
+                    .ok_or_else(|| {
+                        usage(format!(
+                            "bad --smooth `{}`: expected a crease angle in degrees, 0..=180",
+                            v.to_string_lossy()
+                        ))
+                    })?;
+                out.smooth = Some(deg);
+            }
             "--frames" => {
                 let v = value()?;
                 let n = v
@@ -578,7 +611,7 @@ pub fn parse_args(args: &[OsString]) -> Result<DemoArgs, SimError> {
             }
             _ => {
                 return Err(usage(format!(
-                "unknown demo argument `{}`: expected --demo, --model FILE, --paused, --dump-expected FILE or --frames N",
+                "unknown demo argument `{}`: expected --demo, --model FILE, --smooth DEG, --paused, --dump-expected FILE or --frames N",
                 text.escape_debug()
             )))
             }
@@ -593,11 +626,18 @@ pub fn parse_args(args: &[OsString]) -> Result<DemoArgs, SimError> {
 pub fn run(args: &[OsString]) -> Result<(), SimError> {
     let args = parse_args(args)?;
     // A model that does not load is an error (file and line), before any window opens.
+    if args.smooth.is_some() && args.model.is_none() {
+        return Err(SimError::Usage("--smooth needs --model FILE".into()));
+    }
     let model = args
         .model
         .as_deref()
         .map(crate::cli::load_model)
-        .transpose()?;
+        .transpose()?
+        .map(|m| match args.smooth {
+            Some(crease) => m.smoothed(crease),
+            None => m,
+        });
     let model = model.as_ref();
     if let Some(path) = &args.dump_expected {
         return write_png(&first_frame(true, model), path, SCALE);
@@ -784,6 +824,7 @@ mod tests {
                 dump_expected: Some("e.png".into()),
                 frames: Some(3),
                 model: None,
+                smooth: None,
             }
         );
         assert!(parse_args(&os(&["--frames", "x"])).is_err());
@@ -817,6 +858,49 @@ mod tests {
             view.apply(Action::NextScene);
         }
         assert!(view.shows_model());
+    }
+
+    /// `--model FILE --smooth DEG`: the window turns the torus smooth shaded — the frame
+    /// `render-model --smooth` draws, not flat, not an error — and the status line counts the
+    /// intensity planes in the RAM the frame needs.
+    #[test]
+    fn a_smoothed_model_turns_smooth_shaded() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../assets/models/torus.off");
+        let os = |v: &[&str]| v.iter().map(OsString::from).collect::<Vec<_>>();
+        let a = parse_args(&os(&["--model", path, "--smooth=45"])).unwrap();
+        assert_eq!(a.smooth, Some(45.0));
+        assert!(parse_args(&os(&["--smooth", "200"])).is_err());
+        let flat = crate::model::load(Path::new(path)).unwrap();
+        let smooth = flat.smoothed(45.0);
+        let view = View {
+            has_model: true,
+            angle: 0.5,
+            ..View::default()
+        };
+        let (mut s, mut f) = (new_display(), new_display());
+        let frame = render(&mut Renderers::new(), &view, Some(&smooth), &mut s);
+        frame.result.as_ref().unwrap();
+        render(&mut Renderers::new(), &view, Some(&flat), &mut f)
+            .result
+            .unwrap();
+        assert_ne!(s, f, "smooth looks flat");
+        let orbit = model_render::View {
+            yaw_deg: 0.5f32.to_degrees(),
+            ..model_render::View::default()
+        };
+        let (side, q16) = (SIZE as u16, Format::Q16_16);
+        let want =
+            model_render::render_model_image(&smooth, &orbit, side, side, Algo::Scanline, q16)
+                .unwrap();
+        for (k, &c) in want.pixels.iter().enumerate() {
+            let p = Point::new((k % SIZE as usize) as i32, (k / SIZE as usize) as i32);
+            assert_eq!(s.get_pixel(p), c, "pixel {p:?}");
+        }
+        let req = model_render::measure_model::<Q16_16>(&smooth, &orbit, side, side).unwrap();
+        assert_eq!(
+            frame.needs,
+            Some(zrow::scanline::ram_bytes_gouraud::<Q16_16>(&req))
+        );
     }
 
     /// A model whose view needs more than the window's fixed capacities is drawn by
