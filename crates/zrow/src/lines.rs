@@ -5,7 +5,7 @@
 //! A frame is drawn twice over in spirit but once in fact: the method renders **facets**
 //! ([`Shading::Facets`](crate::shading::Shading::Facets): every polygon opaque, in the raw
 //! value of its facet), so each row says which surface is visible at each pixel; the
-//! [`HiddenLines`] sink turns that into a line drawing row by row. A pixel is on a line where
+//! [`HiddenLines`](crate::lines::HiddenLines) sink turns that into a line drawing row by row. A pixel is on a line where
 //! the visible facet changes: it shows a facet, and one of its four neighbours in the frame
 //! shows the background or a facet with a smaller number. Each boundary is thus marked once,
 //! on one side, 1 px wide — a silhouette on the object's own pixels, an edge between two
@@ -46,7 +46,7 @@
 //! ```
 //!
 //! Lines **over the shaded surfaces** (an outline drawing) take a second frame: draw the
-//! shaded frame, then the facets through a [`HiddenLines`] whose sink writes only the line
+//! shaded frame, then the facets through a [`HiddenLines`](crate::lines::HiddenLines) whose sink writes only the line
 //! pixels over it (a frame buffer, or a panel that keeps its own memory).
 //!
 //! Cost: the facet frame is a flat-shaded frame without lighting; the sink compares each

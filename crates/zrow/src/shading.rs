@@ -55,7 +55,7 @@ pub enum Shading {
     /// are not edges. The visibility is every method's own, unchanged: a frame of facets is a
     /// map of which surface is visible at each pixel, and [`crate::lines::HiddenLines`]
     /// turns it into lines, 1 px wide, where the visible facet changes. A scene of more than
-    /// 65,535 faces is refused ([`Error::Unsupported`](crate::Error::Unsupported)) rather
+    /// 65,535 faces is refused ([`Error::Unsupported`]) rather
     /// than drawn with two facets sharing a value. Needs the `lines` feature (default).
     #[cfg(feature = "lines")]
     Facets,
