@@ -309,7 +309,7 @@ fn opaque_row<N: Scalar, const P: usize, const E: usize>(
         for (((d, c), o), x) in run {
             if z < *d {
                 *d = z;
-                *c = color_at(p.color, p.intensity.as_ref(), x, y);
+                *c = color_at(p.color, p.intensity(), x, y);
                 *o = i as u16; // i < P < NONE
             }
             z = z.step(p.plane.dzdx, 1);
@@ -346,7 +346,7 @@ fn each_fragment<N: Scalar, const P: usize, const E: usize>(
                 f(Fragment {
                     x: x as u16, // x < w <= MAX_VIEWPORT
                     depth: z,
-                    color: color_at(p.color, p.intensity.as_ref(), x, y),
+                    color: color_at(p.color, p.intensity(), x, y),
                     alpha: p.alpha,
                     poly: i,
                 });

@@ -33,8 +33,10 @@ pub struct Stored<N> {
     pub plane: DepthPlane<N>,
     /// Colour after shading.
     pub color: Rgb565,
-    /// Smooth shading's intensity, or `None` (flat).
-    pub intensity: Option<IntensityPlane<N>>,
+    /// Smooth shading's intensity, or `None` (flat): kept only with the `gouraud` feature
+    /// (24 bytes a polygon in a 32-bit format), read through [`Stored::intensity`].
+    #[cfg(feature = "gouraud")]
+    intensity: Option<IntensityPlane<N>>,
     /// Opacity (255 = opaque).
     pub alpha: u8,
     /// Whether it is clockwise on the display (a back face, when meshes are culled).
@@ -53,6 +55,18 @@ pub struct Stored<N> {
     pub anchor: (i16, i16),
     edge_start: u32,
     edge_count: u8,
+}
+
+impl<N> Stored<N> {
+    /// Smooth shading's intensity over the polygon, or `None` (flat; always without the
+    /// `gouraud` feature, whose geometry alone makes one).
+    #[inline]
+    pub fn intensity(&self) -> Option<&IntensityPlane<N>> {
+        #[cfg(feature = "gouraud")]
+        return self.intensity.as_ref();
+        #[cfg(not(feature = "gouraud"))]
+        None
+    }
 }
 
 /// Polygons set up for a frame, with their edges; capacities `P` polygons and `E` edges.
@@ -101,6 +115,7 @@ impl<N: Scalar, const P: usize, const E: usize> PolygonTable<N, P, E> {
         let (table, edge_table) = (&mut self.polys, &mut self.edges);
         let mut buf = VertexBuffer::new(&mut []);
         scene.polygons(&setup_cfg, &mut buf, &mut |poly| {
+            #[cfg(feature = "gouraud")]
             let intensity = poly.intensity;
             let poly = &poly.to_raster()?;
             let Some(sp) = setup(poly, &setup_cfg)? else {
@@ -131,6 +146,7 @@ impl<N: Scalar, const P: usize, const E: usize> PolygonTable<N, P, E> {
             let entry = Stored {
                 plane: sp.plane,
                 color: sp.color,
+                #[cfg(feature = "gouraud")]
                 intensity,
                 alpha: poly.alpha,
                 back: signed_area2(&poly.vertices) > 0,
@@ -370,7 +386,7 @@ pub fn paint_in_order<N: Scalar, const P: usize, const E: usize, K: RowSink<N>>(
             if (p.first_row as i32..=p.last_row as i32).contains(&y) {
                 let (xl, xr) = t.span(i, y);
                 if want_depth {
-                    let shade = p.intensity.as_ref();
+                    let shade = p.intensity();
                     paint_span(depth, intensity, &p.plane, p.color, shade, y, xl, xr);
                 } else {
                     let (x0, x1) = (
@@ -378,7 +394,7 @@ pub fn paint_in_order<N: Scalar, const P: usize, const E: usize, K: RowSink<N>>(
                         xr.clamp(0, w as i32) as usize,
                     );
                     if x0 < x1 {
-                        let (shade, x) = (p.intensity.as_ref(), x0 as i32);
+                        let (shade, x) = (p.intensity(), x0 as i32);
                         paint_run(&mut intensity[x0..x1], p.color, shade, x, y);
                     }
                 }

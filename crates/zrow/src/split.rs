@@ -368,7 +368,7 @@ pub fn paint_rows<N: Scalar, K: RowSink<N>, const P: usize, const E: usize, cons
                 &mut intensity[..w],
                 &s.plane,
                 s.color,
-                s.intensity.as_ref(),
+                s.intensity(),
                 y,
                 xl,
                 xr,

@@ -415,7 +415,7 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize>
                 match polys.get(o as usize) {
                     None => (*c, z) = (background, N::MAX),
                     Some(p) => {
-                        *c = color_at(p.color, p.intensity.as_ref(), x as i32, y);
+                        *c = color_at(p.color, p.intensity(), x as i32, y);
                         z = if o == last {
                             z.step(p.plane.dzdx, 1)
                         } else {

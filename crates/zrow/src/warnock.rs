@@ -494,7 +494,7 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, 
             match poly {
                 Some(i) => {
                     let p = self.table.get(i);
-                    paint_span(d, c, &p.plane, p.color, p.intensity.as_ref(), y, r.x0, r.x1);
+                    paint_span(d, c, &p.plane, p.color, p.intensity(), y, r.x0, r.x1);
                 }
                 None => {
                     if let Some(c) = c.get_mut(r.x0 as usize..r.x1 as usize) {
@@ -517,7 +517,7 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, 
             if let (Some(c), Some(d)) = (color.get_mut(row), depth.get_mut(row)) {
                 let (c, d) = (&mut c[..f.w as usize], &mut d[..f.w as usize]);
                 let (x0, x1) = (xl.max(r.x0), xr.min(r.x1));
-                paint_span(d, c, &p.plane, p.color, p.intensity.as_ref(), y, x0, x1);
+                paint_span(d, c, &p.plane, p.color, p.intensity(), y, x0, x1);
             }
             true
         });

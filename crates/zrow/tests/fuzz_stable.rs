@@ -13,6 +13,9 @@
 //! `cargo +nightly fuzz run render FILE`) and the test fails naming it. The coverage-guided
 //! search at random stays with `cargo +nightly fuzz run render` (see `fuzz/`).
 
+// The harness draws facets for hidden lines too (the default `lines` feature).
+#![cfg(feature = "lines")]
+
 #[path = "../../../fuzz/fuzz_targets/harness.rs"]
 mod harness;
 

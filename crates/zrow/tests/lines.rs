@@ -2,6 +2,8 @@
 //! hidden edge), every method drawing the same facets, the streaming sink against a whole-frame
 //! rule, and the typed errors.
 
+#![cfg(feature = "lines")]
+
 mod common;
 
 use common::{every_method, Capture};
