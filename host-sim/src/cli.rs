@@ -10,7 +10,7 @@
 //! ```text
 //! zrow-sim render-model --model FILE [--yaw DEG] [--pitch DEG] [--distance D] [--size WxH]
 //!                       [--algo scanline] [--format q16.16|f32] [--smooth DEG]
-//!                       [--lines hidden|outline] --out OUT.png
+//!                       [--dither] [--lines hidden|outline] --out OUT.png
 //! ```
 //!
 //! and the converter (a model to const Rust data for flash, [`crate::convert`]):
@@ -46,7 +46,7 @@ usage:
   zrow-sim render --screen SCENE.off --out OUT.png [--size WxH] [--algo NAME] [--format FMT]
   zrow-sim render-model --model FILE --out OUT.png [--yaw DEG] [--pitch DEG] [--distance D]
                         [--size WxH] [--algo NAME] [--format FMT] [--smooth DEG]
-                        [--lines hidden|outline]
+                        [--dither] [--lines hidden|outline]
 
   --screen FILE   OFF scene in screen space (x right, y down in pixels, z depth, smaller nearer)
   --out FILE      PNG to write (8-bit RGB, exactly WxH, background black)
@@ -64,6 +64,8 @@ usage:
   --smooth DEG    smooth (Gouraud) shading: each vertex lit with its own normal (the OBJ's vn,
                   else averaged from the faces within DEG degrees, 0..=180; 45 keeps a cube's
                   edges sharp), the intensity interpolated across each face; default flat
+  --dither        with --smooth: each channel dithered to Rgb565 by a 4x4 Bayer matrix, so
+                  slow gradients do not band
   --lines KIND    hidden: a hidden-line drawing, the visible edges 1 px wide in black on
                   white; outline: the shaded model with its visible edges in white over it.
                   The diagonal inside a flat quad is not an edge; every method draws them
@@ -164,6 +166,8 @@ pub struct RenderModelArgs {
     pub smooth: Option<f64>,
     /// Shaded, a hidden-line drawing or an outline drawing (`--lines hidden|outline`).
     pub lines: Lines,
+    /// Smooth shading dithered (`--dither`, with `--smooth`).
+    pub dither: bool,
 }
 
 fn usage(msg: impl Into<String>) -> SimError {
@@ -190,6 +194,7 @@ const RENDER_MODEL_FLAGS: &[&str] = &[
     "--distance",
     "--smooth",
     "--lines",
+    "--dither",
 ];
 
 const CONVERT_FLAGS: &[&str] = &[
@@ -247,6 +252,7 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
     let mut checks = None;
     let mut smooth = None;
     let mut lines = None;
+    let mut dither = false;
     while let Some(arg) = args.next() {
         let text = arg
             .to_str()
@@ -266,14 +272,14 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
                 or_list(allowed)
             )));
         };
-        if matches!(flag, "--strict" | "--compact") {
+        if matches!(flag, "--strict" | "--compact" | "--dither") {
             if value.is_some() {
                 return Err(usage(format!("{flag} takes no value")));
             }
-            let set = if flag == "--strict" {
-                &mut strict
-            } else {
-                &mut compact
+            let set = match flag {
+                "--strict" => &mut strict,
+                "--compact" => &mut compact,
+                _ => &mut dither,
             };
             if std::mem::replace(set, true) {
                 return Err(usage(format!("{flag} given twice")));
@@ -465,6 +471,11 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
     let out = out.ok_or_else(|| usage("render-model needs --out OUT.png"))?;
     view.validate()
         .map_err(|m| usage(format!("bad view: {m}")))?;
+    if dither && smooth.is_none() {
+        return Err(usage(
+            "--dither needs --smooth DEG (it dithers smooth shading)",
+        ));
+    }
     Ok(Command::Render(RenderArgs::Model(RenderModelArgs {
         model,
         out,
@@ -475,6 +486,7 @@ pub fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, S
         view,
         smooth,
         lines: lines.unwrap_or_default(),
+        dither,
     })))
 }
 
@@ -586,7 +598,10 @@ pub fn render_model(args: &RenderModelArgs) -> Result<(), SimError> {
         (args.width, args.height),
         args.algo,
         args.format,
-        args.lines,
+        crate::model_render::Style {
+            lines: args.lines,
+            dither: args.dither,
+        },
     )?;
     out.write(&crate::png_io::encode_for(&image, &args.out)?)
 }
@@ -670,6 +685,17 @@ mod tests {
         };
         assert_eq!(got.smooth, Some(30.0));
         assert_eq!(got.lines, Lines::Outline);
+        assert!(!got.dither);
+        let mut dithered = a.to_vec();
+        dithered.push("--dither");
+        let Command::Render(RenderArgs::Model(got)) = parse(&dithered).unwrap() else {
+            panic!()
+        };
+        assert!(got.dither);
+        let e = parse(&["render-model", "--model=m.obj", "--out=m.png", "--dither"])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("--dither needs --smooth DEG"), "{e}");
         let mut hidden = a;
         hidden[5] = "--lines=hidden";
         let Command::Render(RenderArgs::Model(got)) = parse(&hidden).unwrap() else {

@@ -190,31 +190,54 @@ pub const PAPER: Rgb565 = Rgb565::WHITE;
 /// The lines over the surfaces of an outline drawing.
 pub const OUTLINE_INK: Rgb565 = Rgb565::WHITE;
 
-/// [`render_model_image`] with `lines`: the visible edges come from a frame of facets
-/// ([`zrow::shading::Shading::Facets`]) drawn by the same method, turned into lines 1 px wide
-/// by [`zrow::lines::HiddenLines`] (an edge is drawn where one of the surfaces it separates is
-/// visible; the diagonal inside a flat quad is not an edge). An outline drawing draws the
-/// shaded frame too.
+/// How `render-model` draws beyond the model and the view: lines or not, dithering or not.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Style {
+    /// Shaded, a hidden-line drawing or an outline drawing.
+    pub lines: Lines,
+    /// Smooth shading dithered (`--dither`; a model with vertex normals only).
+    pub dither: bool,
+}
+
+impl From<Lines> for Style {
+    fn from(lines: Lines) -> Style {
+        Style {
+            lines,
+            dither: false,
+        }
+    }
+}
+
+/// [`render_model_image`] in a [`Style`] (or just [`Lines`]): the visible edges come from a
+/// frame of facets ([`zrow::shading::Shading::Facets`]) drawn by the same method, turned into
+/// lines 1 px wide by [`zrow::lines::HiddenLines`] (an edge is drawn where one of the surfaces
+/// it separates is visible; the diagonal inside a flat quad is not an edge). An outline
+/// drawing draws the shaded frame too. With `dither`, a model with vertex normals is drawn
+/// smooth shaded and dithered ([`zrow::shading::Shading::Gouraud`]).
 pub fn render_model_lines(
     model: &LoadedModel,
     view: &View,
     (width, height): (u16, u16),
     algo: Algo,
     format: Format,
-    lines: Lines,
+    style: impl Into<Style>,
 ) -> Result<Image, SimError> {
-    if lines == Lines::Off {
-        return render_model_image(model, view, width, height, algo, format);
-    }
+    let Style { lines, dither } = style.into();
     let cull = Config::model(width, height).cull;
-    let facets = Some(Shading::Facets);
-    let (facets, _) = match format {
-        Format::Q16_16 => model_image::<Q16_16>(model, view, width, height, algo, cull, facets),
-        Format::F32 => model_image::<f32>(model, view, width, height, algo, cull, facets),
-    }?;
+    let draw = |shading| match format {
+        Format::Q16_16 => model_image::<Q16_16>(model, view, width, height, algo, cull, shading),
+        Format::F32 => model_image::<f32>(model, view, width, height, algo, cull, shading),
+    };
+    let smooth =
+        (dither && !model.vertex_normals.is_empty()).then_some(Shading::Gouraud { dither: true });
+    let shaded = || draw(smooth).map(|(image, _)| image);
+    if lines == Lines::Off {
+        return shaded();
+    }
+    let (facets, _) = draw(Some(Shading::Facets))?;
     let edges = hidden_lines(&facets);
     let mut image = match lines {
-        Lines::Outline => render_model_image(model, view, width, height, algo, format)?,
+        Lines::Outline => shaded()?,
         _ => Image {
             pixels: vec![PAPER; facets.pixels.len()],
             ..facets
