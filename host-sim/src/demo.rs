@@ -860,6 +860,27 @@ mod tests {
         assert!(view.shows_model());
     }
 
+    /// `display` shows `model` at the demo's turn `angle` as `render-model` draws it (Q16.16,
+    /// scan-line), pixel for pixel; returns that orbit view.
+    fn shows_as_render_model(
+        display: &SimulatorDisplay<Rgb565>,
+        model: &LoadedModel,
+        angle: f32,
+    ) -> model_render::View {
+        let orbit = model_render::View {
+            yaw_deg: angle.to_degrees(),
+            ..model_render::View::default()
+        };
+        let (side, q16) = (SIZE as u16, Format::Q16_16);
+        let want = model_render::render_model_image(model, &orbit, side, side, Algo::Scanline, q16)
+            .unwrap();
+        for (k, &c) in want.pixels.iter().enumerate() {
+            let p = Point::new((k % SIZE as usize) as i32, (k / SIZE as usize) as i32);
+            assert_eq!(display.get_pixel(p), c, "pixel {p:?}");
+        }
+        orbit
+    }
+
     /// `--model FILE --smooth DEG`: the window turns the torus smooth shaded — the frame
     /// `render-model --smooth` draws, not flat, not an error — and the status line counts the
     /// intensity planes in the RAM the frame needs.
@@ -884,18 +905,8 @@ mod tests {
             .result
             .unwrap();
         assert_ne!(s, f, "smooth looks flat");
-        let orbit = model_render::View {
-            yaw_deg: 0.5f32.to_degrees(),
-            ..model_render::View::default()
-        };
-        let (side, q16) = (SIZE as u16, Format::Q16_16);
-        let want =
-            model_render::render_model_image(&smooth, &orbit, side, side, Algo::Scanline, q16)
-                .unwrap();
-        for (k, &c) in want.pixels.iter().enumerate() {
-            let p = Point::new((k % SIZE as usize) as i32, (k / SIZE as usize) as i32);
-            assert_eq!(s.get_pixel(p), c, "pixel {p:?}");
-        }
+        let orbit = shows_as_render_model(&s, &smooth, 0.5);
+        let side = SIZE as u16;
         let req = model_render::measure_model::<Q16_16>(&smooth, &orbit, side, side).unwrap();
         assert_eq!(
             frame.needs,
@@ -916,17 +927,6 @@ mod tests {
         let frame = render(&mut Renderers::new(), &view, Some(&model), &mut display);
         let stats = frame.result.unwrap();
         assert!(stats.polygons as usize > DEMO_POLYGONS, "{stats:?}");
-        let orbit = model_render::View {
-            yaw_deg: 0.0,
-            ..model_render::View::default()
-        };
-        let (side, q16) = (SIZE as u16, Format::Q16_16);
-        let want =
-            model_render::render_model_image(&model, &orbit, side, side, Algo::Scanline, q16)
-                .unwrap();
-        for (k, &c) in want.pixels.iter().enumerate() {
-            let p = Point::new((k % SIZE as usize) as i32, (k / SIZE as usize) as i32);
-            assert_eq!(display.get_pixel(p), c, "pixel {p:?}");
-        }
+        shows_as_render_model(&display, &model, 0.0);
     }
 }
