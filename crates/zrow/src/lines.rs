@@ -146,7 +146,7 @@ impl<N, S: RowSink<N>, const W: usize> RowSink<N> for HiddenLines<S, W> {
     type Error = S::Error;
     const WANTS_DEPTH: bool = false;
     fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), S::Error> {
-        if row.y == 0 || self.held_y.map(|y| y + 1) != Some(row.y) {
+        if row.y == 0 || self.held_y.and_then(|y| y.checked_add(1)) != Some(row.y) {
             // A new frame (or rows out of order: start again from this one).
             self.above_y = None;
             self.held_y = None;

@@ -435,3 +435,63 @@ fn more_than_65535_faces_are_refused() {
         .render(&scene, &cfg, &mut cap)
         .unwrap();
 }
+
+/// The sink takes any rows a sink of one's own might be handed — out of order, repeated, at
+/// the ends of `u16`, wider than its capacity or empty, for frames of any height — without a
+/// panic (debug build: no overflow), handing on rows no wider than its capacity and never more
+/// rows than it was given.
+#[test]
+fn the_sink_takes_any_rows_without_panic() {
+    struct Count {
+        rows: u32,
+        widest: usize,
+    }
+    impl zrow::RowSink<Q16_16> for Count {
+        type Error = ();
+        fn write_row(&mut self, row: &zrow::Row<'_, Q16_16>) -> Result<(), ()> {
+            self.rows += 1;
+            self.widest = self.widest.max(row.color.len());
+            Ok(())
+        }
+    }
+    let ids: Vec<Rgb565> = (0..20u16)
+        .map(|i| Rgb565::from(embedded_graphics_core::pixelcolor::raw::RawU16::new(i % 3)))
+        .collect();
+    for height in [0u16, 1, 2, 3, u16::MAX] {
+        let mut sink = HiddenLines::<_, 8>::new(
+            Count { rows: 0, widest: 0 },
+            height,
+            Rgb565::WHITE,
+            Rgb565::BLACK,
+        );
+        for (y, w) in [
+            (u16::MAX, 20),
+            (0, 0),
+            (1, 20),
+            (2, 3),
+            (u16::MAX - 1, 8),
+            (u16::MAX, 1),
+            (0, 8),
+            (1, 8),
+            (2, 8),
+        ] {
+            let row = zrow::Row::<Q16_16> {
+                y,
+                color: &ids[..w],
+                depth: &[],
+            };
+            zrow::RowSink::write_row(&mut sink, &row).unwrap();
+        }
+        let count = sink.into_inner();
+        assert!(
+            count.widest <= 8,
+            "height {height}: a row of {}",
+            count.widest
+        );
+        assert!(
+            count.rows <= 9,
+            "height {height}: {} rows out of 9",
+            count.rows
+        );
+    }
+}
