@@ -334,6 +334,22 @@ fn no_renderer(format: &str, name: &str) -> bool {
     false
 }
 
+/// Benchmarks scene `name` in both formats with the shelf's standard renderers, as a
+/// hidden-line frame ([`bench_lines`]) if `lines`; false after an error line.
+fn standard(shelf: &mut Shelf, name: &str, lines: bool) -> bool {
+    let q16 = shelf.get::<Standard<Q16_16>>().map(|r| match lines {
+        true => bench_lines(r, name),
+        false => bench_format(r, name),
+    });
+    let mut ok = q16.unwrap_or_else(|| no_renderer("Q16.16", name));
+    let f32 = shelf.get::<Standard<f32>>().map(|r| match lines {
+        true => bench_lines(r, name),
+        false => bench_format(r, name),
+    });
+    ok &= f32.unwrap_or_else(|| no_renderer("f32", name));
+    ok
+}
+
 /// Renders every comparison scene with renderer type `$t`, built once in a static of its own
 /// (`ok` becomes false after an error line).
 macro_rules! compare {
@@ -381,12 +397,7 @@ fn main() -> ! {
     hash_alone();
     hprintln!("# hash sink alone (240 rows of 240 pixels) instructions=?");
     for name in NAMES {
-        let line = shelf
-            .get::<Standard<Q16_16>>()
-            .map(|r| bench_format(r, name));
-        ok &= line.unwrap_or_else(|| no_renderer("Q16.16", name));
-        let line = shelf.get::<Standard<f32>>().map(|r| bench_format(r, name));
-        ok &= line.unwrap_or_else(|| no_renderer("f32", name));
+        ok &= standard(&mut shelf, name, false);
     }
     macro_rules! run {
         ($t:ty) => {
@@ -410,12 +421,7 @@ fn main() -> ! {
     // The hidden-line scenes, by the standard renderer (no static of their own: the bench's
     // RAM is nearly all taken).
     for name in LINES {
-        let line = shelf
-            .get::<Standard<Q16_16>>()
-            .map(|r| bench_lines(r, name));
-        ok &= line.unwrap_or_else(|| no_renderer("Q16.16", name));
-        let line = shelf.get::<Standard<f32>>().map(|r| bench_lines(r, name));
-        ok &= line.unwrap_or_else(|| no_renderer("f32", name));
+        ok &= standard(&mut shelf, name, true);
     }
     for preset in PRESETS.iter() {
         macro_rules! draw {

@@ -126,6 +126,22 @@ pub(crate) fn draw<N: Scalar, R: Renderer<N>>(
     Ok(frame)
 }
 
+/// The median time of `f` over about `time_for` (at least 5 runs, at most 101).
+pub(crate) fn median(
+    time_for: Duration,
+    mut f: impl FnMut() -> Result<(), String>,
+) -> Result<Duration, String> {
+    let mut times = vec![];
+    let start = Instant::now();
+    while times.len() < 5 || (start.elapsed() < time_for && times.len() < 101) {
+        let t = Instant::now();
+        f()?;
+        times.push(t.elapsed());
+    }
+    times.sort();
+    Ok(times[times.len() / 2])
+}
+
 fn scene_run<N: zrow_scenes::Format, R: Make<N>>(
     p: &Preset,
     name: &str,
@@ -137,18 +153,11 @@ fn scene_run<N: zrow_scenes::Format, R: Make<N>>(
         let mut flat = *cfg;
         flat.shading = Shading::Flat;
         let id = draw(&mut *r, &IdScene(scene), &flat, SIZE)?;
-        let mut times = vec![];
-        let start = Instant::now();
-        while times.len() < 5 || (start.elapsed() < time_for && times.len() < 101) {
-            let t = Instant::now();
-            draw(&mut *r, scene, cfg, SIZE)?;
-            times.push(t.elapsed());
-        }
-        times.sort();
+        let host = median(time_for, || draw(&mut *r, scene, cfg, SIZE).map(|_| ()))?;
         Ok(Rendered {
             frame,
             ids: id.colour.iter().map(|&c| face_of(c)).collect(),
-            host: times[times.len() / 2],
+            host,
             ram: R::RAM_BYTES,
         })
     })

@@ -14,11 +14,11 @@
 //!   pixel with no drawn line pixel within one pixel (its 3 × 3 block) is **missing**, a drawn
 //!   one with no reference line pixel within one pixel is **extra**.
 
-use crate::reference::{self, Aff, Cam, RefScene, State};
-use crate::render::{draw, face_of, Capture, Frame, IdScene, SIZE};
+use crate::reference::{self, cross, dot, sub, unit, Aff, Cam, RefScene, State};
+use crate::render::{draw, face_of, median, Capture, Frame, IdScene, SIZE};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use std::collections::BTreeMap;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 use zrow::lines::HiddenLines;
 use zrow::scanline::Uncued;
 use zrow::shading::Shading;
@@ -62,22 +62,6 @@ pub struct Row {
 type Smooth<N> = Scanline<N, SIZE, 3072, 1024, 512, u16, Uncued, [IntensityPlane<N>; 1024]>;
 /// The flat renderer (facets, and the ID render).
 type Flat<N> = Scanline<N, SIZE, 3072, 1024, 512>;
-
-/// Median time of `f` over about `time_for` (at least 5 runs).
-fn median(
-    time_for: Duration,
-    mut f: impl FnMut() -> Result<(), String>,
-) -> Result<Duration, String> {
-    let mut times = vec![];
-    let start = Instant::now();
-    while times.len() < 5 || (start.elapsed() < time_for && times.len() < 101) {
-        let t = Instant::now();
-        f()?;
-        times.push(t.elapsed());
-    }
-    times.sort();
-    Ok(times[times.len() / 2])
-}
 
 /// `(instructions, ram)` of the bench's `method=scanline` frames, by (scene, format).
 pub fn bench(text: &str) -> BTreeMap<(String, String), (u64, u64)> {
@@ -225,15 +209,6 @@ fn model() -> Result<Model, String> {
     })
 }
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn unit(a: [f64; 3]) -> [f64; 3] {
-    let l = dot(a, a).sqrt();
-    a.map(|e| e / l)
-}
-
 /// Gouraud's error: channels against the interpolated exact intensity.
 fn gouraud_error(
     scene: &RefScene,
@@ -297,20 +272,10 @@ fn continues(m: &Model, k: usize) -> bool {
     if shared.len() != 2 {
         return false;
     }
-    let normal = |p: &[[f64; 3]; 3]| {
-        let (u, v) = (
-            [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]],
-            [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]],
-        );
-        unit([
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ])
-    };
+    let normal = |p: &[[f64; 3]; 3]| unit(cross(sub(p[1], p[0]), sub(p[2], p[0])));
     let (n, other) = (normal(&prev.0), normal(&face.0));
     let third = (0..3).find(|&j| !shared.contains(&face.3[j])).unwrap_or(0);
-    let d = [0, 1, 2].map(|c| face.0[third][c] - prev.0[0][c]);
+    let d = sub(face.0[third], prev.0[0]);
     dot(n, other) > 0.0 && dot(n, d).abs() <= 1e-3 * dot(d, d).sqrt()
 }
 
