@@ -203,7 +203,7 @@ impl View {
 
 /// Every method in one number format, boxed (their tables are too big for a stack) and made
 /// when first used.
-pub struct Methods<N> {
+pub struct Methods<N: zrow::Scalar> {
     scanline: Option<Box<DemoScanline<N>>>,
     zbuffer: Option<Box<DemoZBuffer<N>>>,
     tiled: Option<Box<DemoTiled<N>>>,

@@ -225,6 +225,29 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     /// and stepping one pixel at a time gives the same bits as stepping `n` at once.
     fn step(self, step: Self, n: i32) -> Self;
 
+    /// What evaluating a depth plane anywhere needs besides its two gradients, once its depth
+    /// at column 0 of one row is known: nothing in the exact formats (`()`, no bytes: wrapping
+    /// steps from that depth give the plane's own bits at every pixel), the reference
+    /// (`z_ref`, `i_ref`, `j_ref`) in f32, which evaluates the plane afresh. The scan-line
+    /// method's active entries keep only this and the gradients of a polygon's plane.
+    type PlaneRef: Copy + core::fmt::Debug;
+    /// A [`Scalar::PlaneRef`] with nothing set (all zero: a `static` renderer stays in `.bss`).
+    const PLANE_REF_ZERO: Self::PlaneRef;
+    /// [`Scalar::PlaneRef`] of `plane`.
+    fn plane_ref(plane: &DepthPlane<Self>) -> Self::PlaneRef;
+    /// The depth of the plane with gradients `dzdx`, `dzdy` and reference `r` at the centre of
+    /// pixel (`i`, `j`), `z_row` being its depth at column 0 of row `y`: the bits
+    /// [`DepthPlane::at`] gives.
+    fn plane_at(
+        r: &Self::PlaneRef,
+        dzdx: Self,
+        dzdy: Self,
+        z_row: Self,
+        y: i32,
+        i: i32,
+        j: i32,
+    ) -> Self;
+
     /// A plane's depth as [`DepthPlane::at_unwrapped`] gives it, for comparisons only.
     type Unwrapped: PartialOrd + Copy;
     /// The plane's depth at pixel (`i`, `j`) without wrapping, extrapolated from `anchor`.
@@ -746,6 +769,23 @@ macro_rules! impl_fixed {
             fn step(self, step: Self, n: i32) -> Self {
                 self.wrapping_add(step.wrapping_mul_int(n))
             }
+            type PlaneRef = ();
+            const PLANE_REF_ZERO: () = ();
+            #[inline]
+            fn plane_ref(_: &DepthPlane<Self>) {}
+            #[inline]
+            fn plane_at(
+                _: &(),
+                dzdx: Self,
+                dzdy: Self,
+                z_row: Self,
+                y: i32,
+                i: i32,
+                j: i32,
+            ) -> Self {
+                // Exact modulo 2^32: the same bits from any pixel of the plane.
+                z_row.step(dzdy, j.wrapping_sub(y)).step(dzdx, i)
+            }
             type Unwrapped = i64;
             #[inline]
             fn unwrapped(p: &DepthPlane<Self>, (ai, aj): (i32, i32), i: i32, j: i32) -> i64 {
@@ -1001,6 +1041,31 @@ impl Scalar for f32 {
     #[inline]
     fn step(self, step: Self, n: i32) -> Self {
         self + step * n as f32
+    }
+    type PlaneRef = (f32, i32, i32);
+    const PLANE_REF_ZERO: (f32, i32, i32) = (0.0, 0, 0);
+    #[inline]
+    fn plane_ref(p: &DepthPlane<Self>) -> (f32, i32, i32) {
+        (p.z_ref, p.i_ref, p.j_ref)
+    }
+    #[inline]
+    fn plane_at(
+        &(z_ref, i_ref, j_ref): &(f32, i32, i32),
+        dzdx: f32,
+        dzdy: f32,
+        _: f32,
+        _: i32,
+        i: i32,
+        j: i32,
+    ) -> f32 {
+        let plane = DepthPlane {
+            z_ref,
+            dzdx,
+            dzdy,
+            i_ref,
+            j_ref,
+        };
+        plane.at(i, j)
     }
     type Unwrapped = f32;
     #[inline]
@@ -1408,6 +1473,52 @@ mod tests {
         }
         assert!(fast > 30_000 && planes > 40_000, "{fast} fast of {planes}");
     }
+    /// [`Scalar::plane_at`] from a row's depth at column 0 equals [`DepthPlane::at`] bit for
+    /// bit, for planes of every size, far from their reference pixel too (the scan-line keeps
+    /// only the gradients and [`Scalar::PlaneRef`] of a plane).
+    fn plane_at_equals_the_plane<N: Scalar>() {
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |m: i32| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % (2 * m as u64 + 1)) as i32 - m
+        };
+        let mut planes = 0;
+        for k in 0..20_000 {
+            let reach = [1 << 8, 1 << 12, 1 << 16][k % 3];
+            let (cx, cy) = (next(1 << 14), next(1 << 14));
+            let v: [RasterVertex<N>; 3] = core::array::from_fn(|_| RasterVertex {
+                x: cx + next(reach),
+                y: cy + next(reach),
+                z: N::from_f32(next(1 << 14) as f32 / 64.0).unwrap_or(N::ZERO),
+            });
+            let Some(p) = N::depth_plane(&v, 4) else {
+                continue;
+            };
+            planes += 1;
+            let r = N::plane_ref(&p);
+            for _ in 0..8 {
+                let (y, i, j) = (next(1 << 11), next(1 << 11), next(1 << 11));
+                let got = N::plane_at(&r, p.dzdx, p.dzdy, p.at(0, y), y, i, j);
+                let want = p.at(i, j);
+                assert!(
+                    got.to_f64().to_bits() == want.to_f64().to_bits(),
+                    "{} {p:?} at ({i}, {j}) from row {y}: {got:?} != {want:?}",
+                    N::NAME
+                );
+            }
+        }
+        assert!(planes > 19_000, "{planes}");
+    }
+
+    #[test]
+    fn plane_at_equals_the_plane_in_every_format() {
+        plane_at_equals_the_plane::<Q16_16>();
+        plane_at_equals_the_plane::<Q24_8>();
+        plane_at_equals_the_plane::<f32>();
+    }
+
     fixed_tests!(q24_8, Q24_8, 8, "q24.8");
 
     #[test]

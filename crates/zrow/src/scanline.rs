@@ -150,7 +150,14 @@ struct Ring<'a, N, S> {
     polygon: &'a Polygon<S>,
 }
 
-impl<N> Active<N> {
+impl<N: Scalar> Active<N> {
+    /// Its plane's depth at the centre of pixel (`i`, `j`), `z_row` being set for row `y`: the
+    /// bits [`DepthPlane::at`] gives.
+    #[inline]
+    fn plane_at(&self, y: i32, i: i32, j: i32) -> N {
+        N::plane_at(&self.plane_ref, self.dzdx, self.dzdy, self.z_row, y, i, j)
+    }
+
     /// This row's span's left end (unclamped; the span `xl..xr` may be empty).
     #[inline]
     fn xl(&self) -> i32 {
@@ -215,12 +222,17 @@ struct Walk {
 
 /// One entry of the active list: a polygon crossing the current row.
 #[derive(Clone, Copy, Debug)]
-struct Active<N> {
+struct Active<N: Scalar> {
     left: Walk,
     right: Walk,
-    /// The depth plane, once something needed it ([`Planes::ensure`]): most polygons of a mesh
-    /// never meet another in depth, and are drawn without one.
-    plane: DepthPlane<N>,
+    /// The depth plane's gradients (per pixel right, per row down), once something needed
+    /// the plane ([`Planes::ensure`]): most polygons of a mesh never meet another in depth,
+    /// and are drawn without one.
+    dzdx: N,
+    dzdy: N,
+    /// The rest of the plane, what f32 needs to evaluate it afresh ([`Scalar::PlaneRef`]):
+    /// nothing in the exact formats, which step from `z_row`.
+    plane_ref: N::PlaneRef,
     /// The plane's depth at column 0 of the current row: a depth in this row is then one
     /// multiply-add, [`depth_at`].
     z_row: N,
@@ -370,7 +382,7 @@ impl<N> ShadeStore<N> for Flat {
 /// Choose the capacities with [`crate::requirements()`]. All memory is in the struct:
 /// [`Scanline::RAM_BYTES`] is the whole of it.
 pub struct Scanline<
-    N,
+    N: Scalar,
     const W: usize,
     const V: usize,
     const P: usize,
@@ -495,13 +507,9 @@ impl<
             active: [Active {
                 left: Walk::ZERO,
                 right: Walk::ZERO,
-                plane: DepthPlane {
-                    z_ref: N::ZERO,
-                    dzdx: N::ZERO,
-                    dzdy: N::ZERO,
-                    i_ref: 0,
-                    j_ref: 0,
-                },
+                dzdx: N::ZERO,
+                dzdy: N::ZERO,
+                plane_ref: N::PLANE_REF_ZERO,
                 z_row: N::ZERO,
                 planed: false,
                 last_row: 0,
@@ -918,8 +926,8 @@ impl<
             planes.ensure(a);
         }
         if let (Some(c), Some(e)) = (cue, self.cues.at_mut(slot as usize)) {
-            e.f[0..2].copy_from_slice(&edge_cue(&c, &a.plane, &left, y));
-            e.f[2..4].copy_from_slice(&edge_cue(&c, &a.plane, &right, y));
+            e.f[0..2].copy_from_slice(&edge_cue(&c, a, &left, y));
+            e.f[2..4].copy_from_slice(&edge_cue(&c, a, &right, y));
             e.last = [left.last, right.last];
         }
         self.cover += span_cover(a.xl(), a.xr(), cfg.width as i32);
@@ -987,13 +995,12 @@ impl<
             } else {
                 next_edge(a, true, polygons, vertices, y + 1, cfg, edges);
             }
-            // Exact formats step (the same bits); f32 evaluates, so no error accumulates.
-            if a.planed {
-                a.z_row = if N::EXACT_STEPS {
-                    a.z_row.step(a.plane.dzdy, 1)
-                } else {
-                    a.plane.at(0, y + 1)
-                };
+            // Exact formats step (the same bits; unplaned, a harmless wrapping add to a value
+            // nobody reads, cheaper than the test); f32 evaluates, so no error accumulates.
+            if N::EXACT_STEPS {
+                a.z_row = a.z_row.step(a.dzdy, 1);
+            } else if a.planed {
+                a.z_row = a.plane_at(y, 0, y + 1);
             }
             cover += span_cover(a.xl(), a.xr(), w);
             sorted[kept] = key(a.xl(), slot);
@@ -1261,7 +1268,7 @@ impl<
                 // Checked here: the heavy rows meet each polygon once a row, its plane once.
                 planes.ensure(a);
             }
-            let dzdx = a.plane.dzdx;
+            let dzdx = a.dzdx;
             let rising = dzdx >= N::ZERO;
             for b in first..end.min(hiz.len()) {
                 let far_x = if rising {
@@ -1284,7 +1291,7 @@ impl<
             if !a.planed {
                 planes.ensure(a);
             }
-            let dzdx = a.plane.dzdx;
+            let dzdx = a.dzdx;
             let (x0, x1) = (x0 as usize, x1 as usize);
             // Depth is linear along the row: its least over a stretch is at the stretch's
             // left end if it grows to the right, else at its right end.
@@ -1525,7 +1532,7 @@ fn triangle_walks<N: Copy, S: Slot>(
 /// row `y` (out of the row loop: it happens once or twice per polygon).
 #[cold]
 #[inline(never)]
-fn next_edge<N: Copy, S: Slot>(
+fn next_edge<N: Scalar, S: Slot>(
     a: &mut Active<N>,
     right: bool,
     polygons: &[Polygon<S>],
@@ -1556,7 +1563,7 @@ fn step_cue<N: Scalar>(c: &Cue<N>, a: &Active<N>, e: &mut EdgeCue<N>, y: i32) {
         if e.last[side] == w.last {
             e.f[k] = e.f[k].add(e.f[k + 1]);
         } else {
-            let v = edge_cue(c, &a.plane, &w, y);
+            let v = edge_cue(c, a, &w, y);
             e.f[k..k + 2].copy_from_slice(&v);
             e.last[side] = w.last;
         }
@@ -1565,10 +1572,10 @@ fn step_cue<N: Scalar>(c: &Cue<N>, a: &Active<N>, e: &mut EdgeCue<N>, y: i32) {
 
 /// Affine cue on one edge from row `y`: the exact factor where the edge crosses `y` and the
 /// linear step per row to where it crosses its last row (Gouraud down an edge).
-fn edge_cue<N: Scalar>(c: &Cue<N>, plane: &DepthPlane<N>, w: &Walk, y: i32) -> [N; 2] {
+fn edge_cue<N: Scalar>(c: &Cue<N>, a: &Active<N>, w: &Walk, y: i32) -> [N; 2] {
     // Depth at the crossing: the plane at column x, stepped back by the fraction.
     let on_edge =
-        |d: &Dda, row: i32| c.at_depth(plane.at(d.x, row).sub(plane.dzdx.mul(d.fraction())));
+        |d: &Dda, row: i32| c.at_depth(a.plane_at(y, d.x, row).sub(a.dzdx.mul(d.fraction())));
     let cue = on_edge(&w.dda, y);
     let rows = w.last as i32 - y;
     if rows <= 0 {
@@ -1608,7 +1615,7 @@ fn test_pixels<N: Scalar, const FAR: bool>(
 ) -> Option<N> {
     let raw = |c: Rgb565| RawU16::from(c).into_inner();
     let of = |v: u16| Rgb565::from(RawU16::new(v));
-    let (poly, dzdx) = (a.poly, a.plane.dzdx);
+    let (poly, dzdx) = (a.poly, a.dzdx);
     // One length for both rows, so the indexing below needs no checks.
     let n = depth.len().min(owner.len());
     let (depth, owner) = (&mut depth[..n], &mut owner[..n]);
@@ -1659,7 +1666,7 @@ fn key_left(key: u32) -> i32 {
 /// the plane's own bits: wrapping steps are exact).
 #[inline]
 fn depth_at<N: Scalar>(a: &Active<N>, x: i32) -> N {
-    a.z_row.step(a.plane.dzdx, x)
+    a.z_row.step(a.dzdx, x)
 }
 
 /// Sorts `v` by `key` (keys all distinct, so order among equals does not arise): a heapsort,
@@ -1712,13 +1719,13 @@ fn fill_depth<N: Scalar>(depth: &mut [N], a: &Active<N>, x0: i32) {
         let mut z = depth_at(a, x0);
         for d in depth {
             *d = z;
-            z = z.step(a.plane.dzdx, 1);
+            z = z.step(a.dzdx, 1);
         }
     } else if FPU {
         // x counted in f32, exact below 2^24: the bits of `depth_at` (see `test_pixels`).
         let mut xf = N::from_f32(x0 as f32).unwrap_or(N::ZERO);
         for d in depth {
-            *d = a.z_row.add(a.plane.dzdx.mul(xf));
+            *d = a.z_row.add(a.dzdx.mul(xf));
             xf = xf.add(N::ONE);
         }
     } else {
@@ -1755,14 +1762,15 @@ impl<N: Scalar, S: Slot> Planes<'_, N, S> {
             polygon: &self.polygons[a.poly as usize],
         };
         // Cannot be `None`: the outline has a nonzero area. A zero plane is harmless.
-        a.plane = plane_of(&ring, self.s).unwrap_or(DepthPlane {
+        let plane = plane_of(&ring, self.s).unwrap_or(DepthPlane {
             z_ref: N::ZERO,
             dzdx: N::ZERO,
             dzdy: N::ZERO,
             i_ref: 0,
             j_ref: 0,
         });
-        a.z_row = a.plane.at(0, self.y);
+        (a.dzdx, a.dzdy, a.plane_ref) = (plane.dzdx, plane.dzdy, N::plane_ref(&plane));
+        a.z_row = plane.at(0, self.y);
         a.planed = true;
     }
 }
