@@ -978,9 +978,14 @@ impl<
         } = self;
         let mut kept = 0;
         let (mut cover, w) = (0, cfg.width as i32);
-        for i in 0..sorted.len() {
-            let slot = sorted[i] as u16;
-            let a = &mut active[slot as usize];
+        // A plain slice: its length stays in a register (the vector's is re-read after every
+        // store through `a`).
+        let keys: &mut [u32] = sorted;
+        for i in 0..keys.len() {
+            let slot = keys[i] as u16;
+            let Some(a) = active.get_mut(slot as usize) else {
+                continue; // cannot happen: keys hold occupied slots
+            };
             if a.last_row as i32 <= y {
                 let _ = free.push(slot); // at most A slots
                 continue;
@@ -1003,7 +1008,9 @@ impl<
                 a.z_row = a.plane_at(y, 0, y + 1);
             }
             cover += span_cover(a.xl(), a.xr(), w);
-            sorted[kept] = key(a.xl(), slot);
+            if let Some(k) = keys.get_mut(kept) {
+                *k = key(a.xl(), slot); // kept <= i
+            }
             kept += 1;
         }
         sorted.truncate(kept);
