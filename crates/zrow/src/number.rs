@@ -109,6 +109,12 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     /// 32-bit arithmetic: exact when the format has `shift` or more fractional bits, else
     /// rounded to nearest (a tie up). Always fits: a 16-bit integer is below 2^15.
     fn from_compact(v: i16, shift: u32) -> Self;
+    /// `v` in the format, saturated at its ends (f32: `v as f32`, exact below 2^24).
+    fn from_int(v: i32) -> Self;
+    /// The format's value nearest `n / d` for `d > 0`, zero otherwise. Fixed point: rounded
+    /// once from the exact quotient, ties away from zero, in integers (a Cortex-M3 links no
+    /// floating point for it); f32: the quotient of the two converted to f32.
+    fn from_ratio(n: i32, d: i32) -> Self;
     /// Converts to `f32` (for reports and tests; rounding to nearest).
     fn to_f32(self) -> f32;
     /// Converts to `f64`, exactly (every format fits an `f64`'s 53-bit mantissa).
@@ -531,6 +537,20 @@ macro_rules! impl_fixed {
                 $t::checked_from_num(v)
             }
             #[inline]
+            fn from_int(v: i32) -> Self {
+                $t::from_bits(sat_i64((v as i64) << $t::FRAC_NBITS))
+            }
+            #[inline]
+            fn from_ratio(n: i32, d: i32) -> Self {
+                if d <= 0 {
+                    return $t::ZERO;
+                }
+                $t::from_bits(sat_i64(div::div_round(
+                    (n as i64) << $t::FRAC_NBITS,
+                    d as i64,
+                )))
+            }
+            #[inline]
             fn from_compact(v: i16, shift: u32) -> Self {
                 let f = $t::FRAC_NBITS;
                 $t::from_bits(if shift <= f {
@@ -876,6 +896,18 @@ impl Scalar for f32 {
 
     fn from_f32(v: f32) -> Option<Self> {
         v.is_finite().then_some(v)
+    }
+    #[inline]
+    fn from_int(v: i32) -> Self {
+        v as f32
+    }
+    #[inline]
+    fn from_ratio(n: i32, d: i32) -> Self {
+        if d > 0 {
+            n as f32 / d as f32
+        } else {
+            0.0
+        }
     }
     #[inline]
     fn from_compact(v: i16, shift: u32) -> Self {
@@ -1531,6 +1563,42 @@ mod tests {
             }
         }
         assert!(planes > 19_000, "{planes}");
+    }
+
+    /// [`Scalar::from_ratio`] in fixed point is `n/d` rounded once to nearest (ties away from
+    /// zero), in f32 the f32 quotient; [`Scalar::from_int`] is exact in range and saturates.
+    #[test]
+    fn from_ratio_and_from_int() {
+        fn fixed<N: Scalar>(frac: u32) {
+            let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+            let mut next = |m: u64| {
+                seed ^= seed << 13;
+                seed ^= seed >> 7;
+                seed ^= seed << 17;
+                seed % m
+            };
+            for k in 0..100_000 {
+                let d = 1 + next([1 << 8, 1 << 22, 1 << 31][k % 3]) as i32;
+                let n = next(2 * d as u64 + 1) as i32 - d; // |n/d| ≤ 1, as a crossing's fraction
+                let exact = (n as f64) * (1u64 << frac) as f64 / d as f64;
+                let want = exact.abs().floor() + ((exact.abs().fract() >= 0.5) as u8 as f64);
+                let want = want.copysign(exact);
+                let got = N::from_ratio(n, d).to_f64() * (1u64 << frac) as f64;
+                assert_eq!(got, want, "{} {n}/{d}", N::NAME);
+            }
+            assert_eq!(N::from_ratio(1, 0), N::ZERO);
+            assert_eq!(N::from_ratio(1, -3), N::ZERO);
+            assert_eq!(N::from_int(-7).to_f64(), -7.0);
+            assert_eq!(N::from_int(i32::MAX), N::MAX);
+            assert_eq!(N::from_int(i32::MIN).to_f64(), -(2f64.powi(31 - frac as i32)));
+        }
+        fixed::<Q16_16>(16);
+        fixed::<Q24_8>(8);
+        for (n, d) in [(1, 3), (-5, 7), (0, 9), (2_000_001, 3_000_017)] {
+            assert_eq!(f32::from_ratio(n, d), n as f32 / d as f32);
+        }
+        assert_eq!(f32::from_ratio(1, 0), 0.0);
+        assert_eq!(f32::from_int(-12), -12.0);
     }
 
     #[test]

@@ -270,23 +270,18 @@ impl Dda {
     };
 
     /// Where the edge crosses the current row's sample line, in pixel columns (pixel `i`'s
-    /// centre is `i`): `x − r/den`, rounded to the format.
+    /// centre is `i`): `x − r/den`, the fraction rounded to the format ([`Scalar::from_ratio`]:
+    /// in fixed point in integers, exact and rounded once).
+    #[inline]
     pub fn crossing<N: Scalar>(&self) -> N {
-        // One conversion: this runs per span on the affine-cue path.
-        N::from_f32(self.x as f32 - self.fraction_f32()).unwrap_or(N::ZERO)
+        N::from_int(self.x).sub(self.fraction())
     }
 
-    /// How far left of column `x`'s centre the edge crosses the row: `r/den`, in `0..1`.
+    /// How far left of column `x`'s centre the edge crosses the row: `r/den`, in `0..1`,
+    /// rounded to the format ([`Scalar::from_ratio`]).
+    #[inline]
     pub fn fraction<N: Scalar>(&self) -> N {
-        N::from_f32(self.fraction_f32()).unwrap_or(N::ZERO)
-    }
-
-    fn fraction_f32(&self) -> f32 {
-        if self.den > 0 {
-            self.r as f32 / self.den as f32
-        } else {
-            0.0
-        }
+        N::from_ratio(self.r, self.den)
     }
 
     /// The walk of the edge from (`x0`, `y0`) down to (`x1`, `y1`) (sub-pixels, `y1 > y0`) at

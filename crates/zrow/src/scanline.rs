@@ -1593,7 +1593,7 @@ fn edge_cue<N: Scalar>(c: &Cue<N>, a: &Active<N>, w: &Walk, y: i32) -> [N; 2] {
     for _ in 0..rows {
         end.step();
     }
-    let n = N::from_f32(rows as f32).unwrap_or(N::ONE);
+    let n = N::from_int(rows);
     [
         cue,
         on_edge(&end, w.last as i32)
@@ -1709,7 +1709,7 @@ fn heapsort_by_key<K: Ord>(v: &mut [u16], key: impl Fn(u16) -> K) {
 fn cue_span<N: Scalar>(intensity: &mut [Rgb565], a: &Active<N>, e: &EdgeCue<N>, x0: i32, x1: i32) {
     let (cl, cr) = (a.left.dda.crossing::<N>(), a.right.dda.crossing::<N>());
     let slope = e.f[2].sub(e.f[0]).div(cr.sub(cl)).unwrap_or(N::ZERO);
-    let at = |x: i32| N::from_f32(x as f32).unwrap_or(N::ZERO);
+    let at = N::from_int;
     let mut f = e.f[0].add(at(x0).sub(cl).mul(slope));
     for c in &mut intensity[x0 as usize..x1 as usize] {
         *c = shade(*c, f);
