@@ -1590,7 +1590,10 @@ mod tests {
             assert_eq!(N::from_ratio(1, -3), N::ZERO);
             assert_eq!(N::from_int(-7).to_f64(), -7.0);
             assert_eq!(N::from_int(i32::MAX), N::MAX);
-            assert_eq!(N::from_int(i32::MIN).to_f64(), -(2f64.powi(31 - frac as i32)));
+            assert_eq!(
+                N::from_int(i32::MIN).to_f64(),
+                -(2f64.powi(31 - frac as i32))
+            );
         }
         fixed::<Q16_16>(16);
         fixed::<Q24_8>(8);
