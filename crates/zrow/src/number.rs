@@ -1578,8 +1578,10 @@ mod tests {
                 seed % m
             };
             for k in 0..100_000 {
-                let d = 1 + next([1 << 8, 1 << 22, 1 << 31][k % 3]) as i32;
-                let n = next(2 * d as u64 + 1) as i32 - d; // |n/d| ≤ 1, as a crossing's fraction
+                let d = 1 + next([1 << 8, 1 << 22, (1 << 31) - 1][k % 3]) as i64;
+                // |n/d| ≤ 1, as a crossing's fraction; both fit an i32.
+                let n = (next(2 * d as u64 + 1) as i64 - d) as i32;
+                let d = d as i32;
                 let exact = (n as f64) * (1u64 << frac) as f64 / d as f64;
                 let want = exact.abs().floor() + ((exact.abs().fract() >= 0.5) as u8 as f64);
                 let want = want.copysign(exact);
