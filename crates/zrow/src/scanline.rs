@@ -236,7 +236,7 @@ struct Active<N: Scalar> {
     /// The plane's depth at column 0 of the current row: a depth in this row is then one
     /// multiply-add, [`depth_at`].
     z_row: N,
-    /// Whether `plane` and `z_row` are set.
+    /// Whether the plane (`dzdx`, `dzdy`, `plane_ref`) and `z_row` are set.
     planed: bool,
     last_row: i16,
     /// Scene order: the index in the polygon table.
@@ -1630,7 +1630,7 @@ fn test_pixels<N: Scalar, const FAR: bool>(
     let mut z = depth_at(a, x0 as i32);
     // f32 evaluates each pixel, `z_row + dzdx·x`; with an FPU x is counted in f32 (exact
     // below 2^24, so the same bits as `depth_at` without an integer conversion a pixel).
-    let mut xf = N::from_f32(x0 as f32).unwrap_or(N::ZERO);
+    let mut xf = N::from_int(x0 as i32);
     for i in 0..n {
         // Exact formats step (the same bits); f32 evaluates each pixel.
         if !N::EXACT_STEPS {
@@ -1730,7 +1730,7 @@ fn fill_depth<N: Scalar>(depth: &mut [N], a: &Active<N>, x0: i32) {
         }
     } else if FPU {
         // x counted in f32, exact below 2^24: the bits of `depth_at` (see `test_pixels`).
-        let mut xf = N::from_f32(x0 as f32).unwrap_or(N::ZERO);
+        let mut xf = N::from_int(x0);
         for d in depth {
             *d = a.z_row.add(a.dzdx.mul(xf));
             xf = xf.add(N::ONE);
