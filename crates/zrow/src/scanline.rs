@@ -820,7 +820,9 @@ impl<
                 .is_some_and(|c| c.interpolation == Interpolation::PerspectiveCorrect);
         let mut cursor = 0;
         for y in 0..cfg.height as i32 {
-            // Polygons whose first row this is enter the active list.
+            // Polygons whose first row this is enter the active list (their keys after the
+            // `old` ones).
+            let old = self.sorted.len();
             while let Some(&i) = self.order.get(cursor) {
                 if self.polygons[i as usize].first_row() != y {
                     break;
@@ -848,7 +850,7 @@ impl<
             // A heavy row (see `resolve_row`) is resolved by depth over the active polygons in
             // any order: only the sweep needs them by left end.
             if self.cover <= HEAVY_COVER * width as i32 || self.row.cue {
-                self.sort_active();
+                self.sort_active(old);
             }
             self.resolve_row(want_depth, stats);
             let depth: &[N] = if want_depth {
@@ -949,18 +951,13 @@ impl<
     /// row, and what moves are four-byte keys, compared as they are. Run before every swept
     /// row; a heavy row, resolved by depth, takes the active polygons in any order and skips
     /// it (the next swept row sorts what has drifted meanwhile).
+    ///
+    /// The keys of the polygons that entered this row (the last, from `old` on) come in scene
+    /// order, and most travel far: they are merged in ([`sort_keys`]), not inserted one place
+    /// at a time.
     #[inline(never)]
-    fn sort_active(&mut self) {
-        let sorted = &mut self.sorted[..];
-        for i in 1..sorted.len() {
-            let k = sorted[i];
-            let mut j = i;
-            while j > 0 && sorted[j - 1] > k {
-                sorted[j] = sorted[j - 1];
-                j -= 1;
-            }
-            sorted[j] = k;
-        }
+    fn sort_active(&mut self, old: usize) {
+        sort_keys(&mut self.sorted, old);
     }
 
     /// Retires what ends on row `y` and steps the rest to the next row: each edge one row
@@ -1676,6 +1673,84 @@ fn depth_at<N: Scalar>(a: &Active<N>, x: i32) -> N {
     a.z_row.step(a.dzdx, x)
 }
 
+/// [`Scanline::sort_active`]'s sort of distinct keys, ascending: the first `old` (the keys
+/// that were active on the row before, in last row's order: nearly sorted) and the rest (the
+/// polygons that entered this row, in scene order) are each sorted by insertion, then merged
+/// from the back, each earlier key moving at most once however far the new ones go.
+#[inline(always)]
+fn sort_keys(keys: &mut [u32], old: usize) {
+    if keys.len() < 2 {
+        return;
+    }
+    if old >= keys.len() {
+        insertion_sort(keys); // no new keys (most rows)
+    } else {
+        merge_new_keys(keys, old);
+    }
+}
+
+/// [`sort_keys`] where keys `old..` are new. Out of line: its buffer stays off the stack
+/// frame of the common case.
+#[inline(never)]
+fn merge_new_keys(keys: &mut [u32], old: usize) {
+    let (head, tail) = keys.split_at_mut(old);
+    insertion_sort(head);
+    insertion_sort(tail);
+    let m = tail.len();
+    match (head.last(), tail.first()) {
+        (Some(&h), Some(&t)) if h > t => {}
+        _ => return, // one part empty, or already in order
+    }
+    if m > MERGE_KEYS {
+        insertion_sort(keys); // both parts sorted: correct, if slower
+        return;
+    }
+    let mut new = [0u32; MERGE_KEYS];
+    new[..m].copy_from_slice(&keys[old..]);
+    // From the largest new key down: the earlier keys above it move up past every new key
+    // still to place (`r` of them, this one included), then it lands below them.
+    let mut o = old;
+    for r in (1..=m).rev() {
+        let k = new[r - 1];
+        while o > 0 {
+            let e = keys[o - 1];
+            if e <= k {
+                break;
+            }
+            keys[o - 1 + r] = e;
+            o -= 1;
+        }
+        keys[o + r - 1] = k;
+    }
+}
+
+/// Most keys [`sort_keys`] merges in (polygons entering one row); more are sorted by insertion.
+const MERGE_KEYS: usize = 16;
+
+/// Sorts `v` ascending by insertion: cheap for the few keys that move a place or two. Out of
+/// line: [`sort_keys`] calls it from three places.
+#[inline(never)]
+fn insertion_sort(v: &mut [u32]) {
+    let Some(&first) = v.first() else {
+        return;
+    };
+    // The largest key so far, kept in a register: a key in order costs one compare.
+    let mut top = first;
+    for i in 1..v.len() {
+        let k = v[i];
+        if top <= k {
+            top = k;
+            continue;
+        }
+        let mut j = i;
+        while j > 0 && v[j - 1] > k {
+            v[j] = v[j - 1];
+            j -= 1;
+        }
+        v[j] = k;
+    }
+}
+
 /// Sorts `v` by `key` (keys all distinct, so order among equals does not arise): a heapsort,
 /// a few hundred bytes of code where the library's sort would add several kilobytes to a
 /// firmware that rarely needs it (frames taller than the row is wide).
@@ -1964,6 +2039,35 @@ pub fn ram_bytes_gouraud<N: Scalar>(req: &Requirements) -> usize {
 mod tests {
     use super::*;
     use crate::{Q16_16, Q24_8};
+
+    #[test]
+    fn sort_keys_sorts() {
+        let mut seed = 0x9e37_79b9u32;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 17;
+            seed ^= seed << 5;
+            seed
+        };
+        for n in [0usize, 1, 2, 3, 4, 9, 65, 300] {
+            for sorted_head in [0, n / 2, n.saturating_sub(3), n] {
+                // Distinct keys: a left end in the high half, a distinct slot in the low.
+                // `old` past the end, at the end, within (new keys to merge, 16 at most and
+                // more), and at the start.
+                for old in [n + 1, n, n.saturating_sub(5), n.saturating_sub(20), 0] {
+                    let mut v = [0u32; 300];
+                    for (s, k) in v[..n].iter_mut().enumerate() {
+                        *k = (next() % 64) << 16 | s as u32;
+                    }
+                    v[..sorted_head].sort_unstable();
+                    let mut want = v;
+                    want[..n].sort_unstable();
+                    sort_keys(&mut v[..n], old);
+                    assert_eq!(v, want, "n {n}, head {sorted_head}, old {old}");
+                }
+            }
+        }
+    }
 
     #[test]
     fn heapsort_sorts() {
