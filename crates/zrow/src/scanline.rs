@@ -714,38 +714,43 @@ impl<
 
     /// Orders the polygon table by first row into `order`, scene order within a row: a
     /// counting sort whose counters borrow the colour row (free until the first row is drawn),
-    /// or, for a frame taller than the row is wide, a sort of the polygon numbers.
+    /// a row's width of rows at a time (one pass unless the frame is taller than the row is
+    /// wide).
     fn bucket(&mut self, cfg: &Config) {
         let height = cfg.height as usize;
         let (polygons, order) = (&self.polygons, &mut self.order);
         let first = |p: &Polygon<S>| p.first_row() as usize;
         order.clear();
-        if height > W {
-            order.extend(0..polygons.len() as u16);
-            heapsort_by_key(order, |i| (first(&polygons[i as usize]), i));
-            return;
-        }
+        order.extend(core::iter::repeat_n(0, polygons.len()));
         // The counters are u16 (the polygon table holds fewer than 2^16), kept as Rgb565's
         // raw storage: a free conversion either way.
-        let count = &mut self.intensity[..height];
         let raw = |c: Rgb565| RawU16::from(c).into_inner();
         let of = |v: u16| Rgb565::from(RawU16::new(v));
-        count.fill(of(0));
-        for p in polygons {
-            let c = &mut count[first(p)];
-            *c = of(raw(*c) + 1);
-        }
-        let mut sum = 0u16;
-        for c in count.iter_mut() {
-            let n = raw(*c);
-            *c = of(sum);
-            sum += n;
-        }
-        order.extend(core::iter::repeat_n(0, polygons.len()));
-        for (i, p) in polygons.iter().enumerate() {
-            let c = &mut count[first(p)];
-            order[raw(*c) as usize] = i as u16;
-            *c = of(raw(*c) + 1);
+        // Polygons placed so far (those starting above `base`).
+        let (mut placed, mut base) = (0u16, 0usize);
+        while base < height && W > 0 {
+            let len = (height - base).min(W);
+            let count = &mut self.intensity[..len];
+            count.fill(of(0));
+            for p in polygons {
+                if let Some(c) = count.get_mut(first(p).wrapping_sub(base)) {
+                    *c = of(raw(*c) + 1);
+                }
+            }
+            for c in count.iter_mut() {
+                let n = raw(*c);
+                *c = of(placed);
+                placed += n;
+            }
+            for (i, p) in polygons.iter().enumerate() {
+                if let Some(c) = count.get_mut(first(p).wrapping_sub(base)) {
+                    if let Some(o) = order.get_mut(raw(*c) as usize) {
+                        *o = i as u16;
+                    }
+                    *c = of(raw(*c) + 1);
+                }
+            }
+            base += len;
         }
     }
 
@@ -1751,34 +1756,6 @@ fn insertion_sort(v: &mut [u32]) {
     }
 }
 
-/// Sorts `v` by `key` (keys all distinct, so order among equals does not arise): a heapsort,
-/// a few hundred bytes of code where the library's sort would add several kilobytes to a
-/// firmware that rarely needs it (frames taller than the row is wide).
-fn heapsort_by_key<K: Ord>(v: &mut [u16], key: impl Fn(u16) -> K) {
-    let sift = |v: &mut [u16], mut root: usize, end: usize| loop {
-        let mut child = 2 * root + 1;
-        if child >= end {
-            return;
-        }
-        if child + 1 < end && key(v[child]) < key(v[child + 1]) {
-            child += 1;
-        }
-        if key(v[root]) >= key(v[child]) {
-            return;
-        }
-        v.swap(root, child);
-        root = child;
-    };
-    let n = v.len();
-    for root in (0..n / 2).rev() {
-        sift(v, root, n);
-    }
-    for end in (1..n).rev() {
-        v.swap(0, end);
-        sift(v, 0, end);
-    }
-}
-
 /// Affine depth cue across `x0..x1` (already filled with the polygon's colour): the factor
 /// interpolated linearly between the edges' crossings of the row (one division per span).
 fn cue_span<N: Scalar>(intensity: &mut [Rgb565], a: &Active<N>, e: &EdgeCue<N>, x0: i32, x1: i32) {
@@ -2066,31 +2043,6 @@ mod tests {
                     assert_eq!(v, want, "n {n}, head {sorted_head}, old {old}");
                 }
             }
-        }
-    }
-
-    #[test]
-    fn heapsort_sorts() {
-        let mut seed = 0x1234_5678u32;
-        for n in [0usize, 1, 2, 3, 7, 64, 455] {
-            let mut keys = [0i16; 455];
-            for k in &mut keys[..n] {
-                seed ^= seed << 13;
-                seed ^= seed >> 17;
-                seed ^= seed << 5;
-                *k = (seed % 300) as i16;
-            }
-            let mut v = [0u16; 455];
-            for (i, x) in v.iter_mut().enumerate() {
-                *x = i as u16;
-            }
-            let mut want = v;
-            heapsort_by_key(&mut v[..n], |i| (keys[i as usize], i));
-            want[..n].sort_unstable_by_key(|&i| (keys[i as usize], i));
-            assert_eq!(v, want, "n {n}");
-            assert!(v[..n]
-                .windows(2)
-                .all(|w| keys[w[0] as usize] <= keys[w[1] as usize]));
         }
     }
 
