@@ -474,14 +474,15 @@ impl Report {
              2,500 polygons: {}. ",
             growth.join(", ")
         );
-        if let Some(s) = counts.get("scanline", b) {
+        if let (Some(s), Some(z)) = (counts.get("scanline", b), counts.get("zbuffer", b)) {
             d.push_str(&format!(
-                "RAM decides as much as time there: the z-buffer needs 345,600 bytes at any \
+                "RAM decides as much as time there: the z-buffer needs {} bytes at any \
                  polygon count, more than an STM32F411's 128 KB; the scan-line's tables at \
                  exactly what `foley2500` requires take {} bytes (its `ram=`: \
                  `zrow::scanline::ram_bytes`), so 2,500 on-screen polygons {} an F411, \
                  while 100 take {} bytes. (The other methods' `ram=` are their renderers \
                  as built, sized for `foley2500` with room to spare.)",
+                thousands(z.ram),
                 thousands(s.ram),
                 if s.ram <= F411_RAM {
                     "fit in"

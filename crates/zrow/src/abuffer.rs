@@ -137,7 +137,7 @@ fn far_first<N: Scalar>(a: N, b: N) -> Ordering {
 /// All memory is in the struct ([`ABuffer::RAM_BYTES`]):
 /// `PolygonTable::<N, P, E>::RAM_BYTES + W·(size_of::<N>() + 2 + 2) + F·size_of::<Fragment<N>>()`
 /// plus a few words.
-pub struct ABuffer<N, const W: usize, const P: usize, const E: usize, const F: usize> {
+pub struct ABuffer<N: Scalar, const W: usize, const P: usize, const E: usize, const F: usize> {
     table: PolygonTable<N, P, E>,
     depth: [N; W],
     intensity: [Rgb565; W],
@@ -185,7 +185,7 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const F: usize>
         sink: &mut K,
     ) -> Result<FrameStats, RenderError<K::Error>> {
         cfg.validate(W)?;
-        self.table.build(scene, cfg, false)?;
+        self.table.build(scene, cfg, false, K::WANTS_DEPTH)?;
         // `validate` checked width <= W, so every `..w` below is in range.
         let w = cfg.width as usize;
         self.check_fragments(cfg)?;
@@ -211,6 +211,12 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const F: usize>
                 &self.depth[..w],
                 &mut self.intensity[..w],
             );
+            #[cfg(feature = "exact-depth")]
+            if crate::sink::EXACT_DEPTH && K::WANTS_DEPTH {
+                // The sink's depths: each opaque surface's exact plane.
+                self.table
+                    .exact_row(&self.owner[..w], y, &mut self.depth[..w]);
+            }
             sink.write_row(&Row {
                 y: y as u16,
                 color: &self.intensity[..w],
@@ -266,11 +272,11 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const F: usize>
     }
 }
 
-fn translucent<N>(p: &Stored<N>) -> bool {
+fn translucent<N: Scalar>(p: &Stored<N>) -> bool {
     p.alpha > 0 && p.alpha < 255
 }
 
-fn crosses<N>(p: &Stored<N>, y: i32) -> bool {
+fn crosses<N: Scalar>(p: &Stored<N>, y: i32) -> bool {
     p.first_row as i32 <= y && y <= p.last_row as i32
 }
 

@@ -57,7 +57,14 @@ struct Node {
 
 /// The BSP renderer: rows of `W` pixels, `P` polygons, `E` edges, `Q` pieces (polygons plus
 /// the parts splitting makes; also the node capacity), tree depth below `D`.
-pub struct Bsp<N, const W: usize, const P: usize, const E: usize, const Q: usize, const D: usize> {
+pub struct Bsp<
+    N: Scalar,
+    const W: usize,
+    const P: usize,
+    const E: usize,
+    const Q: usize,
+    const D: usize,
+> {
     table: PolygonTable<N, P, E>,
     pieces: Pieces<N, Q>,
     nodes: Vec<Node, Q>,
@@ -109,7 +116,7 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const Q: usize, 
     ) -> Result<FrameStats, RenderError<K::Error>> {
         cfg.validate(W)?;
         // Back faces stay in the tree (their planes still divide space); culled on the walk.
-        self.table.build(scene, cfg, true)?;
+        self.table.build(scene, cfg, true, K::WANTS_DEPTH)?;
         let w = cfg.width as i32;
         self.build(w)?;
         self.traverse(cfg.cull == Cull::Back)?;

@@ -232,7 +232,7 @@ fn eye<N: Scalar>(view: &crate::math::Affine<N>) -> [f64; 3] {
 
 /// The precomputed-order renderer: the tree, and a cull-only renderer with rows of `W` pixels,
 /// `P` polygons, `E` edges; `K` objects at most.
-pub struct BspOrder<'t, N, const W: usize, const P: usize, const E: usize, const K: usize> {
+pub struct BspOrder<'t, N: Scalar, const W: usize, const P: usize, const E: usize, const K: usize> {
     tree: &'t [OrderNode],
     paint: crate::cullonly::CullOnly<N, W, P, E>,
 }

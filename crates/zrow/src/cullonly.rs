@@ -36,7 +36,7 @@ use crate::sink::RowSink;
 use embedded_graphics_core::pixelcolor::Rgb565;
 
 /// The cull-only renderer: rows of `W` pixels, `P` polygons, `E` edges.
-pub struct CullOnly<N, const W: usize, const P: usize, const E: usize> {
+pub struct CullOnly<N: Scalar, const W: usize, const P: usize, const E: usize> {
     table: PolygonTable<N, P, E>,
     depth: [N; W],
     intensity: [Rgb565; W],
@@ -69,7 +69,7 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize> CullOnly<N, W, P
         sink: &mut K,
     ) -> Result<FrameStats, RenderError<K::Error>> {
         cfg.validate(W)?;
-        self.table.build(scene, cfg, false)?;
+        self.table.build(scene, cfg, false, K::WANTS_DEPTH)?;
         let cue = crate::shading::Cue::for_rows(scene, cfg)?;
         let stats = FrameStats {
             polygons: self.table.len() as u32,

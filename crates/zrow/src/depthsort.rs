@@ -52,7 +52,7 @@ use heapless::Vec;
 
 /// The depth-sort renderer: rows of `W` pixels, `P` polygons, `E` edges, `Q` pieces
 /// (polygons plus the parts splitting makes).
-pub struct DepthSort<N, const W: usize, const P: usize, const E: usize, const Q: usize> {
+pub struct DepthSort<N: Scalar, const W: usize, const P: usize, const E: usize, const Q: usize> {
     table: PolygonTable<N, P, E>,
     pieces: Pieces<N, Q>,
     /// The list, sorted by greatest depth with the farthest last, then the pieces that moved.
@@ -108,7 +108,7 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize, const Q: usize>
         sink: &mut K,
     ) -> Result<FrameStats, RenderError<K::Error>> {
         cfg.validate(W)?;
-        self.table.build(scene, cfg, false)?;
+        self.table.build(scene, cfg, false, K::WANTS_DEPTH)?;
         self.sort(cfg.width as i32)?;
         let cue = crate::shading::Cue::for_rows(scene, cfg)?;
         let stats = FrameStats {

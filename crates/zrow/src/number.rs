@@ -282,7 +282,93 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     ///   in Q24.8 (LSB 1/256) up to 0.94 depth units at the far corner of 240 × 240.
     /// - f32: referenced at the pixel of the first vertex (keeps values small, so little
     ///   cancellation); error a few ULP of the depths and gradients involved.
+    ///
+    /// Every method decides visibility on this plane; the depth a sink that reads depth is
+    /// told comes from [`Scalar::exact_plane`] (within 0.5 LSB).
     fn depth_plane(v: &[RasterVertex<Self>], subpixel_bits: u32) -> Option<DepthPlane<Self>>;
+
+    /// A polygon's plane as exactly as a sink is told its depth ([`Scalar::exact_plane`]).
+    type ExactPlane: Copy + core::fmt::Debug;
+    /// The plane of [`Scalar::depth_plane`] (the same vertices, in the same canonical order)
+    /// held finely enough that [`Scalar::exact_run`] gives each pixel's depth within one unit
+    /// of the last place of the exact value: in fixed point 32 more fractional bits, stepped
+    /// exactly modulo 2^64 and rounded once (within 0.5 LSB + 2^-20 LSB on any screen); in f32
+    /// the plane in f64, rounded once to f32 (within 0.5 ulp and a few 2^-50 of the terms).
+    /// Visibility is still decided on [`Scalar::depth_plane`]'s bits, the same in every
+    /// method; this is what the depth handed to a sink that reads depth
+    /// ([`crate::RowSink::WANTS_DEPTH`]) is evaluated from. `None` for zero area, or (fixed
+    /// point) coordinates far beyond the guard band.
+    fn exact_plane(v: &[RasterVertex<Self>], subpixel_bits: u32) -> Option<Self::ExactPlane>;
+    /// The depths of `plane` at the centres of pixels `x0..` of row `y`, one per element of
+    /// `out`.
+    fn exact_run(plane: &Self::ExactPlane, x0: i32, y: i32, out: &mut [Self]);
+    /// The depth of `plane` at the centre of pixel (`i`, `j`): [`Scalar::exact_run`]'s.
+    fn exact_at(plane: &Self::ExactPlane, i: i32, j: i32) -> Self {
+        let mut out = [Self::ZERO];
+        Self::exact_run(plane, i, j, &mut out);
+        out[0]
+    }
+}
+
+/// A fixed-point [`Scalar::ExactPlane`]: depth in units of 2^-32 of the format's LSB at the
+/// centre of pixel (0, 0), and its steps per pixel right and per row down, all exact modulo
+/// 2^64 (a depth in range at a covered pixel comes out exact, as in [`Scalar::step`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct WidePlane {
+    z00: i64,
+    dx: i64,
+    dy: i64,
+}
+
+/// [`WidePlane`] of the polygon `v` (raw depth bits `bits`): Newell's normal in 128-bit
+/// integers, as [`plane_i128`], each value rounded once at 2^-32 LSB. `None` for zero area or
+/// if a product would not fit 128 bits (coordinates far beyond any guard band).
+fn wide_plane<N: Copy>(
+    v: &[RasterVertex<N>],
+    s: u32,
+    bits: impl Fn(N) -> i32,
+) -> Option<WidePlane> {
+    if v.len() < 3 {
+        return None;
+    }
+    let ((a, b, c), (x0, y0, z0)) = normal_i128(v, bits)?;
+    let half = 1i128 << s >> 1;
+    let wide = |v: i128| v.checked_mul(1 << 32);
+    let num = a
+        .checked_mul(half - x0)?
+        .checked_add(b.checked_mul(half - y0)?)?;
+    let z00 = wide(z0)?.checked_add(div_round(wide(num)?.checked_neg()?, c))?;
+    let dx = div_round(wide(a.checked_mul(1 << s)?)?.checked_neg()?, c);
+    let dy = div_round(wide(b.checked_mul(1 << s)?)?.checked_neg()?, c);
+    // Kept modulo 2^64: every later step wraps the same way.
+    Some(WidePlane {
+        z00: z00 as i64,
+        dx: dx as i64,
+        dy: dy as i64,
+    })
+}
+
+/// [`Scalar::exact_run`] in fixed point: raw bits rounded once from a [`WidePlane`].
+#[inline]
+fn wide_run(p: &WidePlane, x0: i32, y: i32, mut put: impl FnMut(usize, i32), n: usize) {
+    let mut z = p
+        .z00
+        .wrapping_add(p.dx.wrapping_mul(x0 as i64))
+        .wrapping_add(p.dy.wrapping_mul(y as i64));
+    for k in 0..n {
+        put(k, (z.wrapping_add(1 << 31) >> 32) as i32);
+        z = z.wrapping_add(p.dx);
+    }
+}
+
+/// An f32 [`Scalar::ExactPlane`]: the plane in f64, from its first vertex (in pixels).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlaneF64 {
+    z0: f64,
+    x0: f64,
+    y0: f64,
+    gx: f64,
+    gy: f64,
 }
 
 /// Rounds `n / d` to nearest, ties away from zero. `d > 0`.
@@ -485,18 +571,7 @@ fn plane_i128<N: Copy>(
     s: u32,
     bits: impl Fn(N) -> i32,
 ) -> Option<(i32, i32, i32)> {
-    let mut pts = [(0i128, 0i128, 0i128); crate::raster::MAX_POLYGON_VERTICES];
-    let n = v.len().min(pts.len());
-    for (p, q) in pts.iter_mut().zip(v) {
-        *p = (q.x as i128, q.y as i128, bits(q.z) as i128);
-    }
-    let (a, b, c) = newell(&pts[..n]);
-    if c == 0 {
-        return None;
-    }
-    // Normalise so the denominator is positive: the plane is the same.
-    let (a, b, c) = if c < 0 { (-a, -b, -c) } else { (a, b, c) };
-    let (x0, y0, z0) = pts[0];
+    let ((a, b, c), (x0, y0, z0)) = normal_i128(v, bits)?;
     // Pixel (0, 0)'s centre: z − z0 = −(A·(x − x0) + B·(y − y0)) / C, x and y in sub-pixels,
     // z in raw bits (the format's LSB).
     let half = 1i128 << s >> 1;
@@ -506,6 +581,28 @@ fn plane_i128<N: Copy>(
         sat_i32(div_round(-(a << s), c)),
         sat_i32(div_round(-(b << s), c)),
     ))
+}
+
+/// Three 128-bit integers: a normal or a point.
+type I128x3 = (i128, i128, i128);
+
+/// Newell's normal `(A, B, C)` of the polygon `v` (raw depth bits `bits`) with `C > 0` (the
+/// same plane), and its first vertex, in 128-bit integers; `None` for zero area.
+fn normal_i128<N: Copy>(
+    v: &[RasterVertex<N>],
+    bits: impl Fn(N) -> i32,
+) -> Option<(I128x3, I128x3)> {
+    let mut pts = [(0i128, 0i128, 0i128); crate::raster::MAX_POLYGON_VERTICES];
+    let n = v.len().min(pts.len());
+    for (p, q) in pts.iter_mut().zip(v) {
+        *p = (q.x as i128, q.y as i128, bits(q.z) as i128);
+    }
+    let (a, b, c) = newell(&pts[..n]);
+    if c == 0 {
+        return None;
+    }
+    let normal = if c < 0 { (-a, -b, -c) } else { (a, b, c) };
+    Some((normal, pts[0]))
 }
 
 /// Newell's normal of a polygon in (sub-pixel, sub-pixel, depth) units, as exact integers.
@@ -850,6 +947,14 @@ macro_rules! impl_fixed {
                     j_ref: 0,
                 })
             }
+            type ExactPlane = WidePlane;
+            fn exact_plane(v: &[RasterVertex<Self>], subpixel_bits: u32) -> Option<WidePlane> {
+                wide_plane(v, subpixel_bits, |z: Self| z.to_bits())
+            }
+            fn exact_run(p: &WidePlane, x0: i32, y: i32, out: &mut [Self]) {
+                let n = out.len();
+                wide_run(p, x0, y, |k, b| out[k] = $t::from_bits(b), n);
+            }
         }
     };
 }
@@ -1162,6 +1267,48 @@ impl Scalar for f32 {
             i_ref,
             j_ref,
         })
+    }
+    type ExactPlane = PlaneF64;
+    fn exact_plane(v: &[RasterVertex<Self>], subpixel_bits: u32) -> Option<PlaneF64> {
+        if v.len() < 3 {
+            return None;
+        }
+        let scale = 1.0 / (1u32 << subpixel_bits) as f64;
+        // In pixels relative to vertex 0: every difference and product is exact in f64 but
+        // for depths of very different magnitudes.
+        let (bx, by, bz) = (v[0].x, v[0].y, v[0].z as f64);
+        let rel = |q: &RasterVertex<f32>| {
+            (
+                (q.x as i64 - bx as i64) as f64 * scale,
+                (q.y as i64 - by as i64) as f64 * scale,
+                q.z as f64 - bz,
+            )
+        };
+        let (mut a, mut b, mut c) = (0.0f64, 0.0f64, 0.0f64);
+        for k in 0..v.len() {
+            let (x0, y0, z0) = rel(&v[k]);
+            let (x1, y1, z1) = rel(&v[(k + 1) % v.len()]);
+            a += (y0 - y1) * (z0 + z1);
+            b += (z0 - z1) * (x0 + x1);
+            c += (x0 - x1) * (y0 + y1);
+        }
+        if c == 0.0 || !(a.is_finite() && b.is_finite() && c.is_finite()) {
+            return None;
+        }
+        Some(PlaneF64 {
+            z0: bz,
+            x0: bx as f64 * scale,
+            y0: by as f64 * scale,
+            gx: -a / c,
+            gy: -b / c,
+        })
+    }
+    fn exact_run(p: &PlaneF64, x0: i32, y: i32, out: &mut [Self]) {
+        let v = (y as f64 + 0.5 - p.y0) * p.gy + p.z0;
+        for (k, d) in out.iter_mut().enumerate() {
+            let u = (x0 as f64 + k as f64 + 0.5 - p.x0) * p.gx;
+            *d = (v + u).clamp(-1.0e30, 1.0e30) as f32;
+        }
     }
 }
 

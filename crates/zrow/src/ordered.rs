@@ -32,7 +32,7 @@ use embedded_graphics_core::pixelcolor::Rgb565;
 use heapless::Vec;
 
 /// The ordering renderer: rows of `W` pixels, `P` polygons, `E` edges.
-pub struct Ordered<N, const W: usize, const P: usize, const E: usize> {
+pub struct Ordered<N: Scalar, const W: usize, const P: usize, const E: usize> {
     table: PolygonTable<N, P, E>,
     /// Each polygon's least and greatest depth over its samples (`None`: no sample).
     range: Vec<Option<(N, N)>, P>,
@@ -68,9 +68,10 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize> Ordered<N, W, P,
         &mut self,
         scene: &(impl Scene<N> + ?Sized),
         cfg: &Config,
+        exact: bool,
     ) -> Result<(), crate::Error> {
         cfg.validate(W)?;
-        self.table.build(scene, cfg, false)?;
+        self.table.build(scene, cfg, false, exact)?;
         self.range.clear();
         self.order.clear();
         let t = &self.table;
@@ -121,7 +122,7 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize> Ordered<N, W, P,
         scene: &(impl Scene<N> + ?Sized),
         cfg: &Config,
     ) -> Result<bool, crate::Error> {
-        self.prepare(scene, cfg)?;
+        self.prepare(scene, cfg, false)?;
         let t = &self.table;
         for a in 0..t.len() {
             for b in a + 1..t.len() {
@@ -149,7 +150,7 @@ impl<N: Scalar, const W: usize, const P: usize, const E: usize> Ordered<N, W, P,
         cfg: &Config,
         sink: &mut K,
     ) -> Result<FrameStats, RenderError<K::Error>> {
-        self.prepare(scene, cfg)?;
+        self.prepare(scene, cfg, K::WANTS_DEPTH)?;
         let cue = crate::shading::Cue::for_rows(scene, cfg)?;
         let stats = FrameStats {
             polygons: self.table.len() as u32,

@@ -20,6 +20,8 @@
 
 use crate::error::{Error, Table};
 use crate::number::{DepthPlane, Scalar};
+#[cfg(feature = "exact-depth")]
+use crate::raster::exact_plane;
 use crate::raster::{fill_run, paint_run, setup, signed_area2, Config, Cull, Edge, Side};
 use crate::scene::{IntensityPlane, Scene, VertexBuffer};
 use crate::sink::{Row, RowSink};
@@ -28,9 +30,13 @@ use heapless::Vec;
 
 /// One polygon of the table.
 #[derive(Clone, Copy, Debug)]
-pub struct Stored<N> {
+pub struct Stored<N: Scalar> {
     /// Depth plane.
     pub plane: DepthPlane<N>,
+    /// The exact plane a sink that reads depth is told depths from
+    /// ([`Scalar::exact_plane`]), if the table was built for one (`exact-depth` feature).
+    #[cfg(feature = "exact-depth")]
+    pub exact: Option<N::ExactPlane>,
     /// Colour after shading.
     pub color: Rgb565,
     /// Smooth shading's intensity, or `None` (flat): kept only with the `gouraud` feature
@@ -57,7 +63,7 @@ pub struct Stored<N> {
     edge_count: u8,
 }
 
-impl<N> Stored<N> {
+impl<N: Scalar> Stored<N> {
     /// Smooth shading's intensity over the polygon, or `None` (flat; always without the
     /// `gouraud` feature, whose geometry alone makes one).
     #[inline]
@@ -70,7 +76,7 @@ impl<N> Stored<N> {
 }
 
 /// Polygons set up for a frame, with their edges; capacities `P` polygons and `E` edges.
-pub struct PolygonTable<N, const P: usize, const E: usize> {
+pub struct PolygonTable<N: Scalar, const P: usize, const E: usize> {
     polys: Vec<Stored<N>, P>,
     edges: Vec<Edge, E>,
     subpixel_bits: u8,
@@ -97,11 +103,15 @@ impl<N: Scalar, const P: usize, const E: usize> PolygonTable<N, P, E> {
     /// the fly); otherwise they are dropped as the scan-line method drops them.
     ///
     /// Past a capacity it keeps counting, so the error says what the scene needs.
+    ///
+    /// With `exact` (a sink that reads depth), each polygon keeps its exact plane too
+    /// ([`Stored::exact`]).
     pub fn build(
         &mut self,
         scene: &(impl Scene<N> + ?Sized),
         cfg: &Config,
         keep_back: bool,
+        exact: bool,
     ) -> Result<(), Error> {
         self.polys.clear();
         self.edges.clear();
@@ -113,6 +123,8 @@ impl<N: Scalar, const P: usize, const E: usize> PolygonTable<N, P, E> {
         let (s, h) = (cfg.subpixel_bits as u32, cfg.half());
         let (mut polys, mut edges) = (0u32, 0u32);
         let (table, edge_table) = (&mut self.polys, &mut self.edges);
+        #[cfg(not(feature = "exact-depth"))]
+        let _ = exact;
         let mut buf = VertexBuffer::new(&mut []);
         scene.polygons(&setup_cfg, &mut buf, &mut |poly| {
             #[cfg(feature = "gouraud")]
@@ -145,6 +157,11 @@ impl<N: Scalar, const P: usize, const E: usize> PolygonTable<N, P, E> {
             });
             let entry = Stored {
                 plane: sp.plane,
+                #[cfg(feature = "exact-depth")]
+                exact: match exact {
+                    true => exact_plane(poly, &setup_cfg),
+                    false => None,
+                },
                 color: sp.color,
                 #[cfg(feature = "gouraud")]
                 intensity,
@@ -178,6 +195,26 @@ impl<N: Scalar, const P: usize, const E: usize> PolygonTable<N, P, E> {
             return Err(over(Table::Edges, edges, E));
         }
         Ok(())
+    }
+
+    /// The depths a sink that reads depth is told along row `y`: each pixel's polygon (its
+    /// index in `owner`; others are left as they are) evaluated on its exact plane, run by run
+    /// (a table built with `exact`).
+    #[cfg(feature = "exact-depth")]
+    pub fn exact_row(&self, owner: &[u16], y: i32, depth: &mut [N]) {
+        let w = owner.len().min(depth.len());
+        let mut x = 0;
+        while x < w {
+            let o = owner[x];
+            let end = owner[x..w]
+                .iter()
+                .position(|&q| q != o)
+                .map_or(w, |n| x + n);
+            if let Some(e) = self.polys.get(o as usize).and_then(|p| p.exact.as_ref()) {
+                N::exact_run(e, x as i32, y, &mut depth[x..end]);
+            }
+            x = end;
+        }
     }
 
     /// Number of polygons.
@@ -322,17 +359,17 @@ pub fn walk_edges(
     }
 }
 
-/// Paints `x0..x1` of a row (clamped to it) with one polygon: its colour (smooth shaded if
-/// `shade` is its intensity plane), and its depth stepped one pixel at a time from the plane —
-/// the same bits as the scan-line method.
-#[allow(clippy::too_many_arguments)] // a polygon's plane, colour and shade, a row, a span
+/// Paints `x0..x1` of a row (clamped to it) with polygon `p`: its colour (smooth shaded by its
+/// intensity plane, if any), and its depth stepped one pixel at a time from its plane — the
+/// same bits as the scan-line method. If `p` has its exact plane (a table built for a sink
+/// that reads depth), the piece then gets the perspective cue of `cue`, if that is the cue,
+/// from those depths, and the exact depths replace them: the caller leaves the row's cue out.
 #[inline]
 pub fn paint_span<N: Scalar>(
     depth: &mut [N],
     intensity: &mut [Rgb565],
-    plane: &DepthPlane<N>,
-    color: Rgb565,
-    shade: Option<&IntensityPlane<N>>,
+    p: &Stored<N>,
+    cue: &Option<crate::shading::Cue<N>>,
     y: i32,
     x0: i32,
     x1: i32,
@@ -342,18 +379,24 @@ pub fn paint_span<N: Scalar>(
     if x0 >= x1 {
         return;
     }
+    let (depth, intensity) = (
+        &mut depth[x0 as usize..x1 as usize],
+        &mut intensity[x0 as usize..x1 as usize],
+    );
+    let plane = &p.plane;
     let mut z = plane.at(x0, y);
-    for d in &mut depth[x0 as usize..x1 as usize] {
+    for d in depth.iter_mut() {
         *d = z;
         z = z.step(plane.dzdx, 1);
     }
-    paint_run(
-        &mut intensity[x0 as usize..x1 as usize],
-        color,
-        shade,
-        x0,
-        y,
-    );
+    paint_run(intensity, p.color, p.intensity(), x0, y);
+    #[cfg(feature = "exact-depth")]
+    if let Some(e) = &p.exact {
+        crate::shading::Cue::shade_row_if_perspective(cue, depth, intensity);
+        N::exact_run(e, x0, y, depth);
+    }
+    #[cfg(not(feature = "exact-depth"))]
+    let _ = cue;
 }
 
 /// Paints and sends every row, top to bottom, with no depth test: in each row the polygons of
@@ -386,8 +429,7 @@ pub fn paint_in_order<N: Scalar, const P: usize, const E: usize, K: RowSink<N>>(
             if (p.first_row as i32..=p.last_row as i32).contains(&y) {
                 let (xl, xr) = t.span(i, y);
                 if want_depth {
-                    let shade = p.intensity();
-                    paint_span(depth, intensity, &p.plane, p.color, shade, y, xl, xr);
+                    paint_span(depth, intensity, p, cue, y, xl, xr);
                 } else {
                     let (x0, x1) = (
                         xl.clamp(0, w as i32) as usize,
@@ -400,7 +442,10 @@ pub fn paint_in_order<N: Scalar, const P: usize, const E: usize, K: RowSink<N>>(
                 }
             }
         }
-        crate::shading::Cue::shade_row_if_perspective(cue, depth, intensity);
+        if !(crate::sink::EXACT_DEPTH && K::WANTS_DEPTH) {
+            // (For a sink that reads depth each piece had it: see `paint_span`.)
+            crate::shading::Cue::shade_row_if_perspective(cue, depth, intensity);
+        }
         sink.write_row(&Row {
             y: y as u16,
             color: intensity,
@@ -440,7 +485,7 @@ mod tests {
         };
         let cfg = Config::screen(20, 20);
         let mut t = PolygonTable::<f32, 4, 16>::new();
-        t.build(&scene, &cfg, false).unwrap();
+        t.build(&scene, &cfg, false, false).unwrap();
         assert_eq!(t.len(), 3);
         let mut covered = 0;
         for i in 0..t.len() {

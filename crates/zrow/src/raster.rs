@@ -694,6 +694,20 @@ pub fn setup<N: Scalar>(
     }))
 }
 
+/// The exact plane ([`Scalar::exact_plane`]) of a polygon: the vertices [`setup`] fits its
+/// [`SetupPolygon::plane`] to, in the same canonical order. What a method evaluates the depth
+/// it hands a sink that reads depth from; `None` where `setup` has no plane.
+pub fn exact_plane<N: Scalar>(poly: &RasterPolygon<N>, cfg: &Config) -> Option<N::ExactPlane> {
+    let v = &poly.vertices[..];
+    let area = signed_area2(v);
+    if area == 0 {
+        return None;
+    }
+    let mut ordered = [RasterVertex::default(); MAX_POLYGON_VERTICES];
+    let n = canonical(v, area > 0, &mut ordered);
+    N::exact_plane(&ordered[..n], cfg.subpixel_bits as u32)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -51,7 +51,7 @@ use crate::raster::{
 use crate::requirements::Requirements;
 use crate::scene::{IntensityPlane, Scene, VertexBuffer, INDEXED_CORNERS};
 use crate::shading::{Cue, Interpolation};
-use crate::sink::{Row, RowSink};
+use crate::sink::{Row, RowSink, EXACT_DEPTH};
 use embedded_graphics_core::pixelcolor::raw::{RawData, RawU16};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use heapless::Vec;
@@ -438,6 +438,10 @@ struct RowState {
     background: Rgb565,
     /// Whether the affine depth cue shades spans.
     cue: bool,
+    /// Whether the sink reads depth: the row's depths are then each visible polygon's exact
+    /// plane ([`Scalar::exact_plane`]), visibility and the perspective cue being decided on
+    /// the stepped planes first.
+    exact: bool,
     /// Columns of the colour row that may hold something other than the background from the
     /// row before (the buffer persists from row to row): background is written only there.
     stale: (i32, i32),
@@ -537,6 +541,7 @@ impl<
                 s: 0,
                 background: Rgb565::BLACK,
                 cue: false,
+                exact: false,
                 stale: (0, 0),
                 fresh: (0, 0),
             },
@@ -849,6 +854,7 @@ impl<
                 cue: self
                     .frame_cue()
                     .is_some_and(|c| c.interpolation == Interpolation::Affine),
+                exact: EXACT_DEPTH && K::WANTS_DEPTH,
                 stale,
                 fresh: (width as i32, 0),
             };
@@ -859,11 +865,15 @@ impl<
             }
             self.resolve_row(want_depth, stats);
             let depth: &[N] = if want_depth {
-                Cue::shade_row_if_perspective(
-                    &self.frame_cue(),
-                    &self.depth[..width],
-                    &mut self.intensity[..width],
-                );
+                if !(EXACT_DEPTH && K::WANTS_DEPTH) {
+                    // (A sink that reads depth had the cue on each piece, before its exact
+                    // depths replaced the stepped ones.)
+                    Cue::shade_row_if_perspective(
+                        &self.frame_cue(),
+                        &self.depth[..width],
+                        &mut self.intensity[..width],
+                    );
+                }
                 &self.depth[..width]
             } else {
                 &[]
@@ -1375,7 +1385,7 @@ impl<
                 b0 = b1;
             }
         }
-        if G::KEEPS {
+        if G::KEEPS || (EXACT_DEPTH && self.row.exact) {
             return self.owners_to_shades(background);
         }
         // Owners to colours; neighbours mostly share an owner, so the last lookup is kept.
@@ -1399,16 +1409,19 @@ impl<
         let raw = |c: Rgb565| RawU16::from(c).into_inner();
         let y = self.row.y;
         let width = (self.row.width.max(0) as usize).min(W);
-        let owner = &mut self.intensity[..width];
         let mut x = 0;
-        while x < owner.len() {
+        while x < width {
+            let owner = &mut self.intensity[..width];
             let o = raw(owner[x]);
             let same = owner[x..].iter().position(|&c| raw(c) != o);
-            let end = same.map_or(owner.len(), |n| x + n);
+            let end = same.map_or(width, |n| x + n);
             let run = &mut owner[x..end];
             match self.polygons.get(o as usize) {
                 Some(p) => paint_run(run, p.color, self.shades.at(o as usize), x as i32, y),
                 None => fill_run(run, background), // NOBODY
+            }
+            if EXACT_DEPTH && self.row.exact && (o as usize) < self.polygons.len() {
+                self.exact_depths(o as usize, x, end);
             }
             x = end;
         }
@@ -1434,9 +1447,39 @@ impl<
             };
             planes.ensure(&mut self.active[slot]);
             fill_depth(&mut self.depth[a0..a1], &self.active[slot], x0);
+            if EXACT_DEPTH && self.row.exact {
+                let poly = self.active[slot].poly as usize;
+                self.exact_depths(poly, a0, a1);
+            }
         }
         if let (true, Some(e)) = (self.row.cue, self.cues.at(slot)) {
             cue_span(&mut self.intensity, &self.active[slot], e, x0, x1);
+        }
+    }
+
+    /// For a sink that reads depth: columns `a0..a1` of the row, coloured by polygon `poly`
+    /// and holding its stepped depths, get the perspective cue from those depths, then the
+    /// polygon's exact depths ([`Scalar::exact_run`]; its plane found again from its vertices,
+    /// a cost only such a sink pays).
+    #[cold]
+    #[inline(never)]
+    fn exact_depths(&mut self, poly: usize, a0: usize, a1: usize) {
+        let (Some(depth), Some(colours)) =
+            (self.depth.get_mut(a0..a1), self.intensity.get_mut(a0..a1))
+        else {
+            return;
+        };
+        let cue = self.cued.then_some(self.cue);
+        Cue::shade_row_if_perspective(&cue, depth, colours);
+        let Some(p) = self.polygons.get(poly) else {
+            return;
+        };
+        let ring = Ring {
+            vertices: &self.vertices,
+            polygon: p,
+        };
+        if let Some(e) = exact_of(&ring, self.row.s) {
+            N::exact_run(&e, a0 as i32, self.row.y, depth);
         }
     }
 }
@@ -1914,21 +1957,36 @@ fn top_first<'a, S: Slot, N: 'a>(
     corners
 }
 
-/// The depth plane of a polygon through its vertices in canonical order (from the top-left
-/// vertex, clockwise on the display), so the same polygon always gets the same bits.
-fn plane_of<N: Scalar, S: Slot>(ring: &Ring<'_, N, S>, s: u32) -> Option<DepthPlane<N>> {
+/// Calls `f` with a polygon's vertices in canonical order (from the top-left vertex,
+/// clockwise on the display), so the same polygon always gets the same plane bits.
+#[inline]
+fn canonical_of<N: Scalar, S: Slot, R>(
+    ring: &Ring<'_, N, S>,
+    f: impl FnOnce(&[RasterVertex<N>]) -> R,
+) -> R {
     if ring.len() == 3 {
         // Recorded from its top-left corner ([`top_of`] is 0).
-        let (f, g) = if ring.polygon.clockwise() {
+        let (g, h) = if ring.polygon.clockwise() {
             (1, 2)
         } else {
             (2, 1)
         };
         let v = |k: usize| *ring.get(k);
-        N::depth_plane(&[v(0), v(f), v(g)], s)
+        f(&[v(0), v(g), v(h)])
     } else {
-        ring.ordered(|v| N::depth_plane(v, s))
+        ring.ordered(f)
     }
+}
+
+/// The depth plane of a polygon, through its vertices in canonical order.
+fn plane_of<N: Scalar, S: Slot>(ring: &Ring<'_, N, S>, s: u32) -> Option<DepthPlane<N>> {
+    canonical_of(ring, |v| N::depth_plane(v, s))
+}
+
+/// [`plane_of`]'s exact plane ([`Scalar::exact_plane`]), from the same vertices in the same
+/// order.
+fn exact_of<N: Scalar, S: Slot>(ring: &Ring<'_, N, S>, s: u32) -> Option<N::ExactPlane> {
+    canonical_of(ring, |v| N::exact_plane(v, s))
 }
 
 /// Whether the polygon in slot `p` is visible over the one in slot `q` at column `x`: nearer,

@@ -23,11 +23,16 @@ pub struct Row<'a, N> {
     pub y: u16,
     /// The colour of every pixel, left to right.
     pub color: &'a [Rgb565],
-    /// The visible depth at every pixel (the format's maximum where nothing is drawn); empty
-    /// when the sink said it does not read it ([`RowSink::WANTS_DEPTH`]) and the renderer
-    /// skipped it.
+    /// The visible depth at every pixel (the format's maximum where nothing is drawn): the
+    /// visible polygon's exact plane rounded once at the pixel centre, within half a unit of
+    /// the format's last place ([`crate::Scalar::exact_plane`]). Empty when the sink said it
+    /// does not read it ([`RowSink::WANTS_DEPTH`]) and the renderer skipped it.
     pub depth: &'a [N],
 }
+
+/// Whether depths handed to a sink come from each polygon's exact plane (the `exact-depth`
+/// feature, on by default): see [`Row::depth`].
+pub(crate) const EXACT_DEPTH: bool = cfg!(feature = "exact-depth");
 
 /// Receives rows top to bottom, each complete. Like embedded-graphics' `DrawTarget`, it says
 /// how it fails: `Infallible` for memory, the bus error on a display.

@@ -363,18 +363,12 @@ pub fn paint_rows<N: Scalar, K: RowSink<N>, const P: usize, const E: usize, cons
             }
             let s = t.get(p.poly as usize);
             let (xl, xr) = pieces.span(t, k, y, w as i32);
-            paint_span(
-                &mut depth[..w],
-                &mut intensity[..w],
-                &s.plane,
-                s.color,
-                s.intensity(),
-                y,
-                xl,
-                xr,
-            );
+            paint_span(&mut depth[..w], &mut intensity[..w], s, cue, y, xl, xr);
         }
-        crate::shading::Cue::shade_row_if_perspective(cue, &depth[..w], &mut intensity[..w]);
+        if !(crate::sink::EXACT_DEPTH && K::WANTS_DEPTH) {
+            // (For a sink that reads depth each piece had it: see `paint_span`.)
+            crate::shading::Cue::shade_row_if_perspective(cue, &depth[..w], &mut intensity[..w]);
+        }
         sink.write_row(&Row {
             y: y as u16,
             color: &intensity[..w],

@@ -172,7 +172,7 @@ impl Quantisation {
 /// - `W`: row capacity (the widest frame, in pixels);
 /// - `B`: band height in rows (the tile is `W`×`B`; any frame height is drawn, band by band);
 /// - `P`: polygon-table capacity (below 65535); `E`: edge-table capacity.
-pub struct Tiled<N, const W: usize, const B: usize, const P: usize, const E: usize> {
+pub struct Tiled<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize> {
     table: PolygonTable<N, P, E>,
     planes: [GridPlane; P],
     depth: [[u16; W]; B],
@@ -230,7 +230,7 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize>
         sink: &mut K,
     ) -> Result<FrameStats, RenderError<K::Error>> {
         cfg.validate(W)?;
-        self.table.build(scene, cfg, false)?;
+        self.table.build(scene, cfg, false, K::WANTS_DEPTH)?;
         let cue = crate::shading::Cue::for_rows(scene, cfg)?;
         let (w, h) = (cfg.width as usize, cfg.height as usize);
         let levels = self.quantise(cfg);
@@ -431,6 +431,12 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize>
                 &self.depth_row[..w],
                 &mut self.color_row[..w],
             );
+            #[cfg(feature = "exact-depth")]
+            if crate::sink::EXACT_DEPTH && K::WANTS_DEPTH {
+                // The sink's depths: each visible polygon's exact plane.
+                self.table
+                    .exact_row(&orow[..w], y, &mut self.depth_row[..w]);
+            }
             sink.write_row(&Row {
                 y: y as u16,
                 color: &self.color_row[..w],

@@ -125,7 +125,7 @@ impl Rect {
 /// - `L`: potentially-visible list entries, summed over the levels of subdivision (see the
 ///   module doc for the bound a scene needs).
 pub struct Warnock<
-    N,
+    N: Scalar,
     const W: usize,
     const B: usize,
     const P: usize,
@@ -138,6 +138,9 @@ pub struct Warnock<
     color: [[Rgb565; W]; B],
     depth: [[N; W]; B],
     list: Vec<Entry<N>, L>,
+    /// This frame's depth cue (each painted piece takes it when the sink reads depth: see
+    /// [`paint_span`]).
+    cue: Option<crate::shading::Cue<N>>,
 }
 
 impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, const L: usize>
@@ -159,12 +162,12 @@ struct Frame {
 }
 
 /// Whether a polygon's rows meet rows `y0..y1`.
-fn reaches<N>(p: &Stored<N>, y0: i32, y1: i32) -> bool {
+fn reaches<N: Scalar>(p: &Stored<N>, y0: i32, y1: i32) -> bool {
     (p.first_row as i32) < y1 && p.last_row as i32 >= y0
 }
 
 /// A polygon's sample box: every sample it covers lies in it.
-fn sample_box<N>(p: &Stored<N>) -> Rect {
+fn sample_box<N: Scalar>(p: &Stored<N>) -> Rect {
     Rect {
         x0: p.first_col as i32,
         y0: p.first_row as i32,
@@ -195,6 +198,7 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, 
             color: [[Rgb565::BLACK; W]; B],
             depth: [[N::ZERO; W]; B],
             list: Vec::new(),
+            cue: None,
         }
     }
 
@@ -219,8 +223,9 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, 
         sink: &mut K,
     ) -> Result<FrameStats, RenderError<K::Error>> {
         cfg.validate(W)?;
-        self.table.build(scene, cfg, false)?;
+        self.table.build(scene, cfg, false, K::WANTS_DEPTH)?;
         let cue = crate::shading::Cue::for_rows(scene, cfg)?;
+        self.cue = cue;
         let (w, h) = (cfg.width as i32, cfg.height as i32);
         let needed = self.needed(h);
         if needed as usize > L {
@@ -264,11 +269,14 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, 
                 let r = (y - band_y0) as usize;
                 if let (Some(c), Some(d)) = (self.color.get_mut(r), self.depth.get(r)) {
                     // In bounds: `cfg.validate(W)` checked width <= W.
-                    crate::shading::Cue::shade_row_if_perspective(
-                        &cue,
-                        &d[..w as usize],
-                        &mut c[..w as usize],
-                    );
+                    if !(crate::sink::EXACT_DEPTH && K::WANTS_DEPTH) {
+                        // (For a sink that reads depth each piece had it: see `paint_span`.)
+                        crate::shading::Cue::shade_row_if_perspective(
+                            &cue,
+                            &d[..w as usize],
+                            &mut c[..w as usize],
+                        );
+                    }
                     let row = Row {
                         y: y as u16,
                         color: &c[..w as usize],
@@ -494,7 +502,7 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, 
             match poly {
                 Some(i) => {
                     let p = self.table.get(i);
-                    paint_span(d, c, &p.plane, p.color, p.intensity(), y, r.x0, r.x1);
+                    paint_span(d, c, p, &self.cue, y, r.x0, r.x1);
                 }
                 None => {
                     if let Some(c) = c.get_mut(r.x0 as usize..r.x1 as usize) {
@@ -510,14 +518,14 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize, 
 
     /// Paints polygon `i`'s covered samples in the area (its spans clipped to the area).
     fn scan_convert(&mut self, f: &Frame, r: &Rect, i: usize) {
-        let (table, color, depth) = (&self.table, &mut self.color, &mut self.depth);
+        let (table, color, depth, cue) = (&self.table, &mut self.color, &mut self.depth, &self.cue);
         let p = table.get(i);
         table.walk(i, r.y0, r.y1 - 1, |y, xl, xr| {
             let row = (y - f.band_y0) as usize;
             if let (Some(c), Some(d)) = (color.get_mut(row), depth.get_mut(row)) {
                 let (c, d) = (&mut c[..f.w as usize], &mut d[..f.w as usize]);
                 let (x0, x1) = (xl.max(r.x0), xr.min(r.x1));
-                paint_span(d, c, &p.plane, p.color, p.intensity(), y, x0, x1);
+                paint_span(d, c, p, cue, y, x0, x1);
             }
             true
         });
@@ -573,7 +581,7 @@ fn classify<N: Scalar, const P: usize, const E: usize>(
 }
 
 /// The area clipped to a polygon's sample box (which holds every sample it covers).
-fn clip_to_box<N>(r: &Rect, p: &Stored<N>) -> Rect {
+fn clip_to_box<N: Scalar>(r: &Rect, p: &Stored<N>) -> Rect {
     let b = sample_box(p);
     Rect {
         x0: r.x0.max(b.x0),

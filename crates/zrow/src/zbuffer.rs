@@ -12,15 +12,22 @@
 //! `<`, and polygons arrive in scene order, so a tie goes to the polygon first in the scene
 //! (README, Conventions).
 //!
+//! A sink that reads depth is told each pixel's depth from the visible polygon's exact plane
+//! ([`Scalar::exact_plane`]), kept in a third buffer as pixels are won (the `exact-depth`
+//! feature); the test itself is on the stepped depths, as in every method.
+//!
 //! Rows leave top to bottom, but only once the whole frame is drawn: the method needs the
 //! whole frame in RAM, `W·H·(size_of::<N>() + 2)` bytes ([`ZBuffer::RAM_BYTES`]) — 345,600
-//! bytes for 240×240 in Q16.16, more than an STM32F411 has. It is the host reference and
+//! bytes for 240×240 in Q16.16 (576,000 with the `exact-depth` feature's third buffer), more
+//! than an STM32F411 has. It is the host reference and
 //! the method for small screens; [`crate::tiled`] is its MCU form.
 
 use crate::error::{Error, RenderError, Table};
 use crate::method::{FrameStats, Renderer};
 use crate::number::Scalar;
 use crate::polygons::walk_edges;
+#[cfg(feature = "exact-depth")]
+use crate::raster::exact_plane;
 use crate::raster::{color_at, setup, Config};
 use crate::scene::{Scene, VertexBuffer};
 use crate::sink::{Row, RowSink};
@@ -30,6 +37,11 @@ use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 pub struct ZBuffer<N, const W: usize, const H: usize> {
     depth: [[N; W]; H],
     intensity: [[Rgb565; W]; H],
+    /// Each pixel's depth as a sink that reads depth is told it: the visible polygon's exact
+    /// plane ([`Scalar::exact_plane`]), written as it wins the test on `depth`
+    /// (`exact-depth` feature).
+    #[cfg(feature = "exact-depth")]
+    exact: [[N; W]; H],
 }
 
 impl<N: Scalar, const W: usize, const H: usize> Default for ZBuffer<N, W, H> {
@@ -47,6 +59,8 @@ impl<N: Scalar, const W: usize, const H: usize> ZBuffer<N, W, H> {
         ZBuffer {
             depth: [[N::ZERO; W]; H],
             intensity: [[Rgb565::BLACK; W]; H],
+            #[cfg(feature = "exact-depth")]
+            exact: [[N::ZERO; W]; H],
         }
     }
 
@@ -74,13 +88,27 @@ impl<N: Scalar, const W: usize, const H: usize> ZBuffer<N, W, H> {
         for row in &mut self.intensity[..h] {
             row[..w].fill(cfg.background);
         }
+        #[cfg(feature = "exact-depth")]
+        if K::WANTS_DEPTH {
+            for row in &mut self.exact[..h] {
+                row[..w].fill(N::MAX);
+            }
+        }
         let mut stats = FrameStats::default();
         let s = cfg.subpixel_bits as u32;
         let (depth, intensity) = (&mut self.depth, &mut self.intensity);
+        #[cfg(feature = "exact-depth")]
+        let exact = &mut self.exact;
         let mut buf = VertexBuffer::new(&mut []);
         scene.polygons(cfg, &mut buf, &mut |poly| {
-            let Some(sp) = setup(&poly.to_raster()?, cfg)? else {
+            let raster = poly.to_raster()?;
+            let Some(sp) = setup(&raster, cfg)? else {
                 return Ok(());
+            };
+            #[cfg(feature = "exact-depth")]
+            let fine = match K::WANTS_DEPTH {
+                true => exact_plane(&raster, cfg),
+                false => None,
             };
             stats.polygons += 1;
             stats.edges += sp.edges.len() as u32;
@@ -91,6 +119,17 @@ impl<N: Scalar, const W: usize, const H: usize> ZBuffer<N, W, H> {
                     let (zrow, crow) = (&mut depth[y as usize], &mut intensity[y as usize]);
                     let z = sp.plane.at(x0, y);
                     let (c, dzdx) = (sp.color, sp.plane.dzdx);
+                    #[cfg(feature = "exact-depth")]
+                    if let Some(e) = &fine {
+                        // A sink that reads depth: each pixel won gets the exact depth too.
+                        let erow = &mut exact[y as usize];
+                        let color = |x| color_at(c, poly.intensity.as_ref(), x, y);
+                        test_span(zrow, crow, z, dzdx, x0, x1, |x| {
+                            erow[x as usize] = N::exact_at(e, x, y);
+                            color(x)
+                        });
+                        return true;
+                    }
                     // The loop twice: flat, one colour; smooth, the colour at each pixel.
                     match poly.intensity.as_ref() {
                         None => test_span(zrow, crow, z, dzdx, x0, x1, |_| c),
@@ -112,6 +151,12 @@ impl<N: Scalar, const W: usize, const H: usize> ZBuffer<N, W, H> {
             sink.write_row(&Row {
                 y: y as u16,
                 color: &self.intensity[y][..w],
+                #[cfg(feature = "exact-depth")]
+                depth: match K::WANTS_DEPTH {
+                    true => &self.exact[y][..w],
+                    false => &self.depth[y][..w],
+                },
+                #[cfg(not(feature = "exact-depth"))]
                 depth: &self.depth[y][..w],
             })
             .map_err(RenderError::Sink)?;
@@ -143,7 +188,7 @@ fn test_span<N: Scalar>(
     dzdx: N,
     x0: i32,
     x1: i32,
-    color: impl Fn(i32) -> Rgb565,
+    mut color: impl FnMut(i32) -> Rgb565,
 ) {
     for x in x0 as usize..x1 as usize {
         if z < zrow[x] {

@@ -179,10 +179,11 @@ struct Expected<N> {
 /// order on equal depth), then every translucent polygon covering it that beats it (nearer,
 /// or as near and earlier in the scene; any, if no opaque one), blended far to near (on equal
 /// depth the earlier polygon on top). Coverage and depth from the polygon table's per-sample
-/// queries (edge functions, the plane evaluated at the pixel), not the row walk.
+/// queries (edge functions, the plane evaluated at the pixel), not the row walk; the depth a
+/// sink is told, the opaque polygon's exact plane there.
 fn brute_force<N: Scalar>(o: &Owned<N>, cfg: &Config, tie: f64) -> Vec<Expected<N>> {
     let mut t = Box::new(PolygonTable::<N, 256, 1024>::new());
-    o.with(|s| t.build(s, cfg, false)).unwrap();
+    o.with(|s| t.build(s, cfg, false, true)).unwrap();
     let mut out = Vec::new();
     for y in 0..cfg.height as i32 {
         for x in 0..cfg.width as i32 {
@@ -219,7 +220,10 @@ fn brute_force<N: Scalar>(o: &Owned<N>, cfg: &Config, tie: f64) -> Vec<Expected<
                 .any(|(k, a)| zs[k + 1..].iter().any(|b| (a - b).abs() <= tie));
             out.push(Expected {
                 color,
-                depth: opaque.map_or(N::MAX, |(_, z)| z),
+                depth: opaque.map_or(N::MAX, |(i, _)| {
+                    let e = t.get(i).exact.expect("a table built with exact planes");
+                    N::exact_at(&e, x, y)
+                }),
                 near_tie,
                 fragments: frags.len(),
             });

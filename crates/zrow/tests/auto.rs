@@ -172,7 +172,16 @@ fn ordered_equals_scanline<N: Scalar>(p: &Polys, cfg: &Config, what: &str) {
         .unwrap();
     assert!(want.color == got.color, "{what} {}: colour", N::NAME);
     if N::NAME == Q16_16::NAME {
-        assert!(want.depth == got.depth, "{what}: depth bits");
+        if let Some(i) = (0..want.depth.len()).find(|&i| want.depth[i] != got.depth[i]) {
+            panic!(
+                "{what}: depth bits at {i} ({}, {}): scan {:?} ordered {:?}, colour {:?}",
+                i % cfg.width as usize,
+                i / cfg.width as usize,
+                want.depth[i],
+                got.depth[i],
+                index_of(want.color[i])
+            );
+        }
     }
 }
 
