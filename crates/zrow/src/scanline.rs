@@ -440,13 +440,28 @@ struct RowState {
     cue: bool,
     /// Whether the sink reads depth: the row's depths are then each visible polygon's exact
     /// plane ([`Scalar::exact_plane`]), visibility and the perspective cue being decided on
-    /// the stepped planes first.
+    /// the stepped planes first. Only with the `exact-depth` feature: without it the field
+    /// is not there, so a build that never hands depth on keeps the layout (and the
+    /// register allocation) it had without it.
+    #[cfg(feature = "exact-depth")]
     exact: bool,
     /// Columns of the colour row that may hold something other than the background from the
     /// row before (the buffer persists from row to row): background is written only there.
     stale: (i32, i32),
     /// Columns this row painted with a polygon (the next row's `stale`).
     fresh: (i32, i32),
+}
+
+impl RowState {
+    /// Whether the row's depths are to be each visible polygon's exact plane (the sink reads
+    /// depth and the `exact-depth` feature is on).
+    #[inline]
+    fn exact(&self) -> bool {
+        #[cfg(feature = "exact-depth")]
+        return self.exact;
+        #[cfg(not(feature = "exact-depth"))]
+        false
+    }
 }
 
 /// A row whose spans cover more than this many times its width is resolved pixel by pixel
@@ -541,6 +556,7 @@ impl<
                 s: 0,
                 background: Rgb565::BLACK,
                 cue: false,
+                #[cfg(feature = "exact-depth")]
                 exact: false,
                 stale: (0, 0),
                 fresh: (0, 0),
@@ -854,7 +870,8 @@ impl<
                 cue: self
                     .frame_cue()
                     .is_some_and(|c| c.interpolation == Interpolation::Affine),
-                exact: EXACT_DEPTH && K::WANTS_DEPTH,
+                #[cfg(feature = "exact-depth")]
+                exact: K::WANTS_DEPTH,
                 stale,
                 fresh: (width as i32, 0),
             };
@@ -1385,7 +1402,7 @@ impl<
                 b0 = b1;
             }
         }
-        if G::KEEPS || (EXACT_DEPTH && self.row.exact) {
+        if G::KEEPS || (self.row.exact()) {
             return self.owners_to_shades(background);
         }
         // Owners to colours; neighbours mostly share an owner, so the last lookup is kept.
@@ -1420,7 +1437,7 @@ impl<
                 Some(p) => paint_run(run, p.color, self.shades.at(o as usize), x as i32, y),
                 None => fill_run(run, background), // NOBODY
             }
-            if EXACT_DEPTH && self.row.exact && (o as usize) < self.polygons.len() {
+            if self.row.exact() && (o as usize) < self.polygons.len() {
                 self.exact_depths(o as usize, x, end);
             }
             x = end;
@@ -1447,7 +1464,7 @@ impl<
             };
             planes.ensure(&mut self.active[slot]);
             fill_depth(&mut self.depth[a0..a1], &self.active[slot], x0);
-            if EXACT_DEPTH && self.row.exact {
+            if self.row.exact() {
                 let poly = self.active[slot].poly as usize;
                 self.exact_depths(poly, a0, a1);
             }
