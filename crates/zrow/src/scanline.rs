@@ -1524,6 +1524,26 @@ impl<
     }
 }
 
+/// The walk of the edge from `p` down to `q` (at position `at` of its polygon's ring) at row
+/// `y`, if the edge goes down and covers `y` (its first row being at or above `y`).
+#[inline]
+fn edge_walk<N>(
+    p: &RasterVertex<N>,
+    q: &RasterVertex<N>,
+    at: usize,
+    y: i32,
+    cfg: &Config,
+) -> Option<Walk> {
+    let (s, h, height) = (cfg.subpixel_bits as u32, cfg.half(), cfg.height as i32);
+    // The edge's last sample row.
+    let last = row_at_or_below(q.y, s, h).min(height) - 1;
+    (q.y > p.y && last >= y).then(|| Walk {
+        dda: Dda::between(p.x, p.y, q.x, q.y, y, s),
+        last: last as i16,
+        at: at as u8,
+    })
+}
+
 /// The edge of one side of a polygon that crosses row `y`, walking its vertex ring from
 /// position `at` (forward or backward) downwards; `None` if the side ends above `y`.
 fn walk_from<N: Copy, S: Slot>(
@@ -1534,7 +1554,6 @@ fn walk_from<N: Copy, S: Slot>(
     cfg: &Config,
 ) -> Option<Walk> {
     let n = ring.len();
-    let (s, h, height) = (cfg.subpixel_bits as u32, cfg.half(), cfg.height as i32);
     let mut at = at as usize;
     let mut p = *ring.get(at);
     for _ in 0..n {
@@ -1548,15 +1567,8 @@ fn walk_from<N: Copy, S: Slot>(
         if q.y < p.y {
             return None; // past the bottom
         }
-        // The edge's last sample row; it covers `y` unless it ends above (the walk starts at
-        // an edge whose first row is at or above `y`).
-        let last = row_at_or_below(q.y, s, h).min(height) - 1;
-        if q.y > p.y && last >= y {
-            return Some(Walk {
-                dda: Dda::between(p.x, p.y, q.x, q.y, y, s),
-                last: last as i16,
-                at: next as u8,
-            });
+        if let Some(w) = edge_walk(&p, &q, next, y, cfg) {
+            return Some(w);
         }
         (at, p) = (next, q);
     }
@@ -1575,17 +1587,8 @@ fn triangle_walks<N: Copy, S: Slot>(
     let v = [*ring.get(0), *ring.get(1), *ring.get(2)];
     // Recorded from its top vertex ([`top_first`]).
     let (t, f, b) = (0, 1, 2);
-    let (s, h, height) = (cfg.subpixel_bits as u32, cfg.half(), cfg.height as i32);
     // The edge from vertex `p` down to `q`, if it covers row `y`.
-    let edge = |p: usize, q: usize| {
-        let (p, qv) = (&v[p], &v[q]);
-        let last = row_at_or_below(qv.y, s, h).min(height) - 1;
-        (qv.y > p.y && last >= y).then(|| Walk {
-            dda: Dda::between(p.x, p.y, qv.x, qv.y, y, s),
-            last: last as i16,
-            at: q as u8,
-        })
-    };
+    let edge = |p: usize, q: usize| edge_walk(&v[p], &v[q], q, y, cfg);
     // Down one side: top to its neighbour, then on to the third vertex.
     let side =
         |n: usize, m: usize| edge(t, n).or_else(|| (v[m].y > v[n].y).then(|| edge(n, m)).flatten());
@@ -1617,7 +1620,18 @@ fn next_edge<N: Scalar, S: Slot>(
     };
     let w = if right { &mut a.right } else { &mut a.left };
     // Clockwise on the display: forward from the top runs down the right side.
-    if let Some(next) = walk_from(ring, w.at, right == p.clockwise(), y, cfg) {
+    let forward = right == p.clockwise();
+    let next = if ring.len() == 3 {
+        // A triangle's side has two edges (from its top, recorded first): the second runs
+        // from the end of the first to the third corner, forward or backward round the
+        // ring. (Beyond it the side turns up: nothing more, as `walk_from` would find.)
+        let at = w.at as usize;
+        let to = if forward { (at + 1) % 3 } else { (at + 2) % 3 };
+        edge_walk(ring.get(at), ring.get(to), to, y, cfg)
+    } else {
+        walk_from(ring, w.at, forward, y, cfg)
+    };
+    if let Some(next) = next {
         *w = next;
         *edges += 1;
     }
