@@ -1402,7 +1402,7 @@ impl<
                 b0 = b1;
             }
         }
-        if G::KEEPS || (self.row.exact()) {
+        if G::KEEPS || self.row.exact() {
             return self.owners_to_shades(background);
         }
         // Owners to colours; neighbours mostly share an owner, so the last lookup is kept.
