@@ -150,6 +150,40 @@ pub(crate) fn div_round(n: i64, d: i64) -> i64 {
     }
 }
 
+/// `n / d` rounded to nearest, ties away from zero, for `0 < d < 2^24` and a quotient that fits
+/// an `i32`: long division whose first digit is the numerator's top 32 bits and each further
+/// digit 8 bits (a hardware division each: one for a numerator below 2^32, two for a
+/// projection's typical 2^33), the quotient in one register. The result of
+/// [`div_round`]`(n, d)` where that fits an `i32`; `None` where it does not, or `d` is out of
+/// range.
+#[inline]
+pub(crate) fn div_round_small_divisor(n: i64, d: u32) -> Option<i32> {
+    if d == 0 || d >= 1 << 24 {
+        return None;
+    }
+    let un = n.unsigned_abs();
+    // Bits below the first digit: a multiple of 8, so that the first digit has at most 32.
+    let extra = (32 - ((un >> 32) as u32).leading_zeros() + 7) & !7;
+    let top = (un >> extra) as u32;
+    let (mut q, mut r) = (top / d, top % d);
+    let mut left = extra;
+    while left > 0 {
+        if q > 1 << 23 {
+            return None; // the quotient passes 2^31
+        }
+        left -= 8;
+        let t = r << 8 | (un >> left) as u32 & 0xff; // r < d < 2^24
+        (q, r) = ((q << 8) | (t / d), t % d);
+    }
+    let q = q.checked_add((r >= d - r) as u32)?;
+    // Up to 2^31 − 1, or 2^31 for a negative quotient.
+    let most = (1u32 << 31) - (n >= 0) as u32;
+    (q <= most).then(|| match n < 0 {
+        true => (q as i32).wrapping_neg(),
+        false => q as i32,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -251,5 +285,40 @@ mod tests {
             let d = if rng(&mut seed) % 2 == 0 { d } else { -d };
             assert_eq!(div_round(n, d), exact(n, d), "{n} / {d}");
         }
+    }
+
+    #[test]
+    fn small_divisor_path_equals_div_round() {
+        // Numerators of every size (both ends included), divisors on both sides of 2^24:
+        // where the path answers, the answer is `div_round`'s.
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut taken = 0;
+        for k in 0..400_000u32 {
+            let n = match k % 7 {
+                0 => i64::MAX,
+                1 => i64::MIN + 1,
+                _ => (rng(&mut seed) as i64) >> (rng(&mut seed) % 64),
+            };
+            let d = ((rng(&mut seed) as u32) >> (rng(&mut seed) % 32)).max(1);
+            let want = div_round(n, d as i64);
+            match div_round_small_divisor(n, d) {
+                Some(q) => {
+                    assert_eq!(q as i64, want, "{n} / {d}");
+                    taken += 1;
+                }
+                None => assert!(d >= 1 << 24 || i32::try_from(want).is_err(), "{n} / {d}"),
+            }
+        }
+        assert!(taken > 100_000, "{taken}");
+        assert_eq!(div_round_small_divisor(5, 2), Some(3));
+        assert_eq!(div_round_small_divisor(-5, 2), Some(-3));
+        assert_eq!(div_round_small_divisor(1, 0), None);
+        // The ends of `i32`, reached through further digits.
+        assert_eq!(div_round_small_divisor(-(1 << 39), 256), Some(i32::MIN));
+        assert_eq!(div_round_small_divisor(1 << 39, 256), None);
+        assert_eq!(
+            div_round_small_divisor(((1 << 31) - 1) * 3, 3),
+            Some(i32::MAX)
+        );
     }
 }
