@@ -38,8 +38,8 @@ use crate::raster::{
     MAX_POLYGON_VERTICES,
 };
 use crate::scene::{
-    Face, IntensityPlane, Mesh, MeshIndex, ModelScene, Polygon, Projection, Scene, ScreenScene,
-    VertexBuffer, INDEXED_CORNERS,
+    Face, Faces, IntensityPlane, Mesh, MeshIndex, ModelScene, Polygon, Projection, Scene,
+    ScreenScene, VertexBuffer, INDEXED_CORNERS,
 };
 use crate::shading::Shading;
 use embedded_graphics_core::pixelcolor::raw::RawU16;
@@ -1042,7 +1042,6 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
             obj.mesh.check()?;
         }
         let mut no = 0u32;
-        let mut corners = [0u32; MAX_POLYGON_VERTICES];
         let facets = cfg!(feature = "lines") && cfg.shading.is_facets(); // as in ScreenScene
         facets_fit(
             facets,
@@ -1114,52 +1113,55 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
                 true => 255,
                 false => face.alpha,
             };
-            for (k, face) in mesh.faces.iter().enumerate() {
-                let face = &face;
-                let this = no;
-                no += 1;
-                // A triangle whose corners all projected (nearly every face of a mesh in
-                // view): three index loads, three slot loads, its winding.
-                if let (Some(b), [i0, i1, i2]) = (base, face.indices) {
-                    let (i0, i1, i2) = (i0.index(), i1.index(), i2.index());
-                    let slots = buf.as_slice();
-                    if let (Some(v0), Some(v1), Some(v2)) = (
-                        slots.get(b + i0).filter(|_| i0 < count),
-                        slots.get(b + i1).filter(|_| i1 < count),
-                        slots.get(b + i2).filter(|_| i2 < count),
-                    ) {
-                        if v0.x != UNPROJECTED && v1.x != UNPROJECTED && v2.x != UNPROJECTED {
-                            // Projected corners lie within the guard band (below 2^25
-                            // sub-pixels at any screen size): differences fit 32 bits, each
-                            // product is one 32 × 32 → 64-bit multiply.
-                            let d = |a: i32, b: i32| a.wrapping_sub(b) as i64;
-                            let area2 =
-                                d(v1.x, v0.x) * d(v2.y, v0.y) - d(v2.x, v0.x) * d(v1.y, v0.y);
-                            if dropped(area2, cfg) {
-                                continue;
-                            }
-                            let intensity = match smooth {
-                                true => plane(face, &[*v0, *v1, *v2], area2),
-                                false => None,
-                            };
-                            let out = Out {
-                                color: color(k, face, intensity.is_some()),
-                                intensity,
-                                alpha: alpha(face),
-                                face: this,
-                                area2,
-                            };
-                            let mut c = [(b + i0) as u32, (b + i1) as u32, (b + i2) as u32];
-                            emit_indexed(buf, &mut c, out, f)?;
-                            continue;
+            // A front triangle whose corners all projected (nearly every face of a mesh in
+            // view): lit, and handed on by slot.
+            let front =
+                |k: usize,
+                 face: &Face<'_, I>,
+                 mut c: [u32; 3],
+                 area2: i64,
+                 buf: &mut VertexBuffer<'_, N>,
+                 f: &mut dyn FnMut(&Polygon<'_, N>) -> Result<(), Error>| {
+                    let intensity = match smooth {
+                        true => {
+                            let v = |j: usize| buf.as_slice().get(c[j] as usize).copied();
+                            let v = [v(0), v(1), v(2)].map(|v| v.unwrap_or_default());
+                            plane(face, &v, area2)
                         }
-                    }
-                }
+                        false => None,
+                    };
+                    let out = Out {
+                        color: color(k, face, intensity.is_some()),
+                        intensity,
+                        alpha: alpha(face),
+                        face: first_no + k as u32,
+                        area2,
+                    };
+                    emit_indexed(buf, &mut c, out, f)
+                };
+            // The doubled signed area of the triangle on slots `b + i` (`None` unless all
+            // three are in the buffer and projected). Projected corners lie within the guard
+            // band (below 2^25 sub-pixels at any screen size): differences fit 32 bits, each
+            // product is one 32 × 32 → 64-bit multiply.
+            let winding = |slots: &[RasterVertex<N>], b: usize, [i0, i1, i2]: [usize; 3]| {
+                let v = |i: usize| slots.get(b + i).filter(|v| i < count && v.x != UNPROJECTED);
+                let (v0, v1, v2) = (v(i0)?, v(i1)?, v(i2)?);
+                let d = |a: i32, b: i32| a.wrapping_sub(b) as i64;
+                Some(d(v1.x, v0.x) * d(v2.y, v0.y) - d(v2.x, v0.x) * d(v1.y, v0.y))
+            };
+            // Any other face: a polygon whose corners all projected, by slot; else clipped.
+            let any = |k: usize,
+                       face: &Face<'_, I>,
+                       buf: &mut VertexBuffer<'_, N>,
+                       f: &mut dyn FnMut(&Polygon<'_, N>) -> Result<(), Error>|
+             -> Result<(), Error> {
+                let this = first_no + k as u32;
+                let mut corners = [0u32; MAX_POLYGON_VERTICES];
                 let (n, projected) = corners_of(face, count, base, buf, &mut corners, this)?;
                 if projected {
                     let area2 = area_of(buf.as_slice(), &corners[..n]);
                     if dropped(area2, cfg) {
-                        continue;
+                        return Ok(());
                     }
                     let mut intensity = None;
                     if smooth {
@@ -1176,8 +1178,7 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
                         face: this,
                         area2,
                     };
-                    emit_indexed(buf, &mut corners[..n], out, f)?;
-                    continue;
+                    return emit_indexed(buf, &mut corners[..n], out, f);
                 }
                 let levels = smooth.then(|| levels_of(face));
                 let n = face.indices.len().min(MAX_POLYGON_VERTICES);
@@ -1196,8 +1197,34 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
                 };
                 emit_clipped(
                     mesh, face, this, &prepared, &proj, cfg, color, levels, buf, f,
-                )?;
+                )
+            };
+            // Face `k`'s corners if it is a triangle.
+            let triangle = |k: usize| {
+                let t = match mesh.faces {
+                    Faces::Triangles { indices, .. } => *indices.get(k)?,
+                    Faces::List(l) => <[I; 3]>::try_from(l.get(k)?.indices).ok()?,
+                };
+                Some(t.map(|i| i.index()))
+            };
+            for k in 0..mesh.faces.len() {
+                // A triangle whose corners all projected is culled here by its winding
+                // alone: a face the culling drops costs no more.
+                let mut fast = None;
+                if let (Some(b), Some(i)) = (base, triangle(k)) {
+                    match winding(buf.as_slice(), b, i) {
+                        Some(area2) if dropped(area2, cfg) => continue,
+                        Some(area2) => fast = Some((i.map(|i| (b + i) as u32), area2)),
+                        None => {}
+                    }
+                }
+                let Some(face) = mesh.faces.get(k) else { break };
+                match fast {
+                    Some((c, area2)) => front(k, &face, c, area2, buf, f)?,
+                    None => any(k, &face, buf, f)?,
+                }
             }
+            no = first_no + mesh.faces.len() as u32;
         }
         Ok(())
     }
