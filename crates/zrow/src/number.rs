@@ -720,19 +720,11 @@ macro_rules! impl_fixed {
                     return None;
                 }
                 // A divisor below 2^24 (most vertices): each quotient in one or two
-                // hardware divisions.
-                if d < 1 << 24 {
-                    let q = |n: i64| div::div_round_small_divisor(n, d as u32);
-                    let x = q(self.to_bits() as i64 * kx as i64)?;
-                    let y = q(y.to_bits() as i64 * ky as i64)?;
-                    let z = match k {
-                        Some(k) => $t::from_bits(q((k.to_bits() as i64) << $t::FRAC_NBITS)?),
-                        None => Self::ZERO,
-                    };
-                    return Some((x, y, z));
-                }
-                let r = div::Recip::new(d as u64);
-                let q = |n: i64| i32::try_from(r.div_round(n)).ok();
+                // hardware divisions; a larger one, the general division.
+                let q = |n: i64| match d < 1 << 24 {
+                    true => div::div_round_small_divisor(n, d as u32),
+                    false => i32::try_from(div::div_round(n, d as i64)).ok(),
+                };
                 let x = q(self.to_bits() as i64 * kx as i64)?;
                 let y = q(y.to_bits() as i64 * ky as i64)?;
                 let z = match k {
