@@ -39,7 +39,7 @@ use crate::raster::{
 };
 use crate::scene::{
     Face, Faces, IntensityPlane, Mesh, MeshIndex, ModelScene, Polygon, Projection, Scene,
-    ScreenScene, VertexBuffer, INDEXED_CORNERS,
+    ScreenScene, Vectors, VertexBuffer, INDEXED_CORNERS,
 };
 use crate::shading::Shading;
 use embedded_graphics_core::pixelcolor::raw::RawU16;
@@ -1069,6 +1069,10 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
             let normal = |k: usize, face: &Face<'_, I>| -> Option<[N; 3]> {
                 if let Some(n) = mesh.normals.get(k) {
                     return Some([n.x, n.y, n.z]);
+                }
+                if let Vectors::Compact { raw, shift } = mesh.vertices {
+                    let v = |j: usize| raw.get(face.indices.get(j)?.index()).copied();
+                    return N::face_normal_compact(v(0)?, v(1)?, v(2)?, shift as u32);
                 }
                 let v = |j: usize| {
                     let p = mesh.vertices.get(face.indices[j].index())?;

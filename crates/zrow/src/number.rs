@@ -196,6 +196,15 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     /// division per component. Fixed point: the cross product is exact (64-bit integers).
     /// `None` for a zero normal.
     fn face_normal(a: [Self; 3], b: [Self; 3], c: [Self; 3]) -> Option<[Self; 3]>;
+    /// [`Scalar::face_normal`] of three compact positions ([`Scalar::from_compact`] with
+    /// `shift`): the same result. Fixed point takes it from the 16-bit integers themselves
+    /// where that is exact — the cross product of the converted positions is theirs times a
+    /// power of two, which the normalisation takes out — without converting them.
+    #[inline]
+    fn face_normal_compact(a: [i16; 3], b: [i16; 3], c: [i16; 3], shift: u32) -> Option<[Self; 3]> {
+        let f = |p: [i16; 3]| p.map(|v| Self::from_compact(v, shift));
+        Self::face_normal(f(a), f(b), f(c))
+    }
     /// Saturating negation.
     fn neg(self) -> Self {
         Self::ZERO.sub(self)
@@ -482,6 +491,29 @@ fn rsqrt_bits(raw: i32, f: u32) -> i32 {
         let s = (-shift) as u32;
         ((r + (1 << (s - 1))) >> s) as i32
     }
+}
+
+/// The fixed-point [`Scalar::face_normal`] of three 16-bit integer positions, as raw bits with
+/// `f` fractional bits: the cross product of two edges, exact (edges below 2^16, products
+/// below 2^32, components below 2^33), its largest component shifted to `[2^(f−1), 2^f)`.
+/// `None` for a zero normal.
+#[inline]
+fn face_normal_i16(a: [i16; 3], b: [i16; 3], c: [i16; 3], f: u32) -> Option<[i32; 3]> {
+    let e = |p: [i16; 3]| [0, 1, 2].map(|i| p[i] as i32 - a[i] as i32);
+    let (e1, e2) = (e(b), e(c));
+    let p = |u: i32, v: i32| u as i64 * v as i64;
+    let n = [
+        p(e1[1], e2[2]) - p(e1[2], e2[1]),
+        p(e1[2], e2[0]) - p(e1[0], e2[2]),
+        p(e1[0], e2[1]) - p(e1[1], e2[0]),
+    ];
+    // The highest bit of any component is the largest one's.
+    let m = n[0].unsigned_abs() | n[1].unsigned_abs() | n[2].unsigned_abs();
+    if m == 0 {
+        return None;
+    }
+    let shift = (64 - m.leading_zeros()) as i32 - f as i32;
+    Some(n.map(|v| (if shift >= 0 { v >> shift } else { v << -shift }) as i32))
 }
 
 /// The fixed-point depth plane of [`Scalar::depth_plane`] in 64-bit integers: `Some(None)` for
@@ -792,6 +824,24 @@ macro_rules! impl_fixed {
                         _ => $t::ZERO,
                     }
                 })
+            }
+            #[inline]
+            fn face_normal_compact(
+                a: [i16; 3],
+                b: [i16; 3],
+                c: [i16; 3],
+                shift: u32,
+            ) -> Option<[Self; 3]> {
+                // Converted exactly (`shift` at most F), the positions are these integers
+                // times 2^(F − shift), and with F − shift below 14 their edges (below 2^16)
+                // stay below 2^30 converted, where `face_normal` is exact (no pre-shift): its
+                // result is then the same from the integers themselves.
+                let f = $t::FRAC_NBITS;
+                if shift <= f && f - shift < 14 {
+                    return face_normal_i16(a, b, c, f).map(|n| n.map($t::from_bits));
+                }
+                let f = |p: [i16; 3]| p.map(|v| Self::from_compact(v, shift));
+                Self::face_normal(f(a), f(b), f(c))
             }
             fn face_normal(a: [Self; 3], b: [Self; 3], c: [Self; 3]) -> Option<[Self; 3]> {
                 // Edges below 2^15 (a model's edges, nearly always): the cross product fits
@@ -1480,6 +1530,44 @@ mod tests {
                             assert_eq!(got, want, "{v} at 2^-{shift}");
                         }
                     }
+                }
+
+                #[test]
+                fn face_normal_compact_equals_the_converted_positions() {
+                    // Random triangles of every size (edges up to the whole i16 range, and
+                    // degenerate ones), every shift: the same normal as `face_normal` of the
+                    // positions `from_compact` gives.
+                    let mut seed = 0x2545_f491u32;
+                    let mut next = || {
+                        seed ^= seed << 13;
+                        seed ^= seed >> 17;
+                        seed ^= seed << 5;
+                        seed
+                    };
+                    let (mut fast, mut none) = (0, 0);
+                    for k in 0..30_000u32 {
+                        let bits = 1 + k % 16;
+                        let mut p = || {
+                            let mut v = [0i16; 3];
+                            for c in &mut v {
+                                *c = (next() as i16) >> (16 - bits);
+                            }
+                            v
+                        };
+                        let (a, b) = (p(), p());
+                        let c = match k % 9 {
+                            0 => a, // degenerate
+                            _ => p(),
+                        };
+                        let shift = k % 24;
+                        let f = |p: [i16; 3]| p.map(|v| <$t as Scalar>::from_compact(v, shift));
+                        let want = <$t as Scalar>::face_normal(f(a), f(b), f(c));
+                        let got = <$t as Scalar>::face_normal_compact(a, b, c, shift);
+                        assert_eq!(got, want, "{a:?} {b:?} {c:?} at 2^-{shift}");
+                        fast += (shift <= $f && $f - shift < 14) as u32;
+                        none += got.is_none() as u32;
+                    }
+                    assert!(fast > 5_000 && none > 3_000, "{fast} {none}");
                 }
 
                 #[test]
