@@ -1148,7 +1148,8 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
             // band (below 2^25 sub-pixels at any screen size): differences fit 32 bits, each
             // product is one 32 × 32 → 64-bit multiply.
             let winding = |slots: &[RasterVertex<N>], b: usize, [i0, i1, i2]: [usize; 3]| {
-                let v = |i: usize| slots.get(b + i).filter(|v| i < count && v.x != UNPROJECTED);
+                let own = slots.get(b..b.checked_add(count)?)?;
+                let v = |i: usize| own.get(i).filter(|v| v.x != UNPROJECTED);
                 let (v0, v1, v2) = (v(i0)?, v(i1)?, v(i2)?);
                 let d = |a: i32, b: i32| a.wrapping_sub(b) as i64;
                 Some(d(v1.x, v0.x) * d(v2.y, v0.y) - d(v2.x, v0.x) * d(v1.y, v0.y))
