@@ -1810,23 +1810,23 @@ const MERGE_KEYS: usize = 16;
 /// line: [`sort_keys`] calls it from three places.
 #[inline(never)]
 fn insertion_sort(v: &mut [u32]) {
-    let Some(&first) = v.first() else {
-        return;
-    };
-    // The largest key so far, kept in a register: a key in order costs one compare.
-    let mut top = first;
-    for i in 1..v.len() {
-        let k = v[i];
-        if top <= k {
-            top = k;
-            continue;
-        }
+    // Each run in order is passed over with one compare a key; the key after it moves down.
+    let mut from = 0;
+    while let Some(p) = v
+        .get(from..)
+        .and_then(|t| t.windows(2).position(|w| w[0] > w[1]))
+    {
+        let i = from + p + 1;
+        let Some(&k) = v.get(i) else {
+            return; // cannot happen: the pair's second key
+        };
         let mut j = i;
         while j > 0 && v[j - 1] > k {
             v[j] = v[j - 1];
             j -= 1;
         }
         v[j] = k;
+        from = i;
     }
 }
 
