@@ -438,6 +438,9 @@ struct RowState {
     background: Rgb565,
     /// Whether the affine depth cue shades spans.
     cue: bool,
+    /// Whether a painted run needs more than its colours: depths (someone reads them) or the
+    /// cue ([`Scanline::paint_more`]).
+    more: bool,
     /// Whether the sink reads depth: the row's depths are then each visible polygon's exact
     /// plane ([`Scalar::exact_plane`]), visibility and the perspective cue being decided on
     /// the stepped planes first. Only with the `exact-depth` feature: without it the field
@@ -556,6 +559,7 @@ impl<
                 s: 0,
                 background: Rgb565::BLACK,
                 cue: false,
+                more: false,
                 #[cfg(feature = "exact-depth")]
                 exact: false,
                 stale: (0, 0),
@@ -862,14 +866,16 @@ impl<
             } else {
                 self.row.fresh
             };
+            let cue = self
+                .frame_cue()
+                .is_some_and(|c| c.interpolation == Interpolation::Affine);
             self.row = RowState {
                 y,
                 width: width as i32,
                 s: cfg.subpixel_bits as u32,
                 background: cfg.background,
-                cue: self
-                    .frame_cue()
-                    .is_some_and(|c| c.interpolation == Interpolation::Affine),
+                cue,
+                more: want_depth || cue,
                 #[cfg(feature = "exact-depth")]
                 exact: K::WANTS_DEPTH,
                 stale,
@@ -1236,7 +1242,7 @@ impl<
                 }
             }
         }
-        if want_depth || self.row.cue {
+        if self.row.more {
             self.paint_more(x0, x1, slot, want_depth);
         }
     }
