@@ -260,7 +260,7 @@ impl<N: Scalar, const P: usize, const E: usize> PolygonTable<N, P, E> {
             self.edge_at(i, Side::Left, y),
             self.edge_at(i, Side::Right, y),
         ) {
-            (Some(l), Some(r)) => (l.dda_at(y, s).x, r.dda_at(y, s).x),
+            (Some(l), Some(r)) => (l.dda_at(y, s).x(), r.dda_at(y, s).x()),
             _ => (0, 0),
         }
     }
@@ -347,7 +347,7 @@ pub fn walk_edges(
             };
             r = n;
         }
-        if !f(y, l.0.x, r.0.x) {
+        if !f(y, l.0.x(), r.0.x()) {
             return;
         }
         if y < l.1 {

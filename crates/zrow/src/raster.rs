@@ -212,13 +212,7 @@ impl Edge {
             let (qx, fx) = (x0h >> s, x0h & mask);
             let num = fx * self.dy + t * self.dx;
             let q = -((-num).div_euclid(den));
-            return Dda {
-                x: qx + q,
-                r: q * den - num,
-                qs,
-                rs,
-                den,
-            };
+            return Dda::new(qx + q, q * den - num, qs, rs, den);
         }
         self.dda_at_wide(row, s)
     }
@@ -234,13 +228,13 @@ impl Edge {
         let step = (self.dx as i64) << s;
         let qs = step.div_euclid(den);
         let rs = step - qs * den;
-        Dda {
-            x: q as i32,
-            r: r as i32,
-            qs: qs as i32,
-            rs: rs as i32,
-            den: den as i32,
-        }
+        Dda::new(
+            q as i32,
+            r as i32,
+            qs.clamp(-(1 << 15), (1 << 15) - 1) as i32,
+            rs as i32,
+            den as i32,
+        )
     }
 }
 
@@ -249,12 +243,16 @@ impl Edge {
 ///
 /// It is the textbook `x += 1/m` with 1/m split into a whole step `qs` and a remainder `rs`
 /// over `den`, as Bresenham does: `x − r/den` is exactly `(crossing − h)/2^S`.
+///
+/// 16 bytes: the column and the whole step are 16-bit. Snapped vertices lie within the guard
+/// band, so a crossing inside the edge's rows is below 2^13 pixels, and an edge that spans
+/// two sample rows (the only kind ever stepped) is more than a row tall, so its step is below
+/// 2^14 pixels (a taller step, of an edge one row tall, is kept saturated and never used).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct Dda {
-    /// Current pixel column.
-    pub x: i32,
+    x: i16,
+    qs: i16,
     r: i32,
-    qs: i32,
     rs: i32,
     den: i32,
 }
@@ -263,18 +261,37 @@ impl Dda {
     /// A walk at column 0 that stays there (a placeholder).
     pub const ZERO: Dda = Dda {
         x: 0,
-        r: 0,
         qs: 0,
+        r: 0,
         rs: 0,
         den: 0,
     };
+
+    /// The walk at column `x` with remainder `r`, stepping `qs` and `rs` over `den` a row
+    /// (the column as 16 bits, the step saturated to them: see [`Dda`]).
+    #[inline]
+    fn new(x: i32, r: i32, qs: i32, rs: i32, den: i32) -> Dda {
+        Dda {
+            x: x as i16,
+            qs: qs.clamp(i16::MIN as i32, i16::MAX as i32) as i16,
+            r,
+            rs,
+            den,
+        }
+    }
+
+    /// Current pixel column.
+    #[inline]
+    pub fn x(&self) -> i32 {
+        self.x as i32
+    }
 
     /// Where the edge crosses the current row's sample line, in pixel columns (pixel `i`'s
     /// centre is `i`): `x − r/den`, the fraction rounded to the format ([`Scalar::from_ratio`]:
     /// in fixed point in integers, exact and rounded once).
     #[inline]
     pub fn crossing<N: Scalar>(&self) -> N {
-        N::from_int(self.x).sub(self.fraction())
+        N::from_int(self.x()).sub(self.fraction())
     }
 
     /// How far left of column `x`'s centre the edge crosses the row: `r/den`, in `0..1`,
@@ -300,13 +317,7 @@ impl Dda {
             let x0h = x0 - h;
             let num = (x0h & mask) * dy + t * dx;
             let q = -((-num).div_euclid(den));
-            return Dda {
-                x: (x0h >> s) + q,
-                r: q * den - num,
-                qs,
-                rs,
-                den,
-            };
+            return Dda::new((x0h >> s) + q, q * den - num, qs, rs, den);
         }
         Edge {
             first_row: 0,
@@ -324,11 +335,11 @@ impl Dda {
     /// Moves to the next row.
     #[inline]
     pub fn step(&mut self) {
-        self.x += self.qs;
+        self.x = self.x.wrapping_add(self.qs);
         self.r -= self.rs;
         if self.r < 0 {
             self.r += self.den;
-            self.x += 1;
+            self.x = self.x.wrapping_add(1);
         }
     }
 }
@@ -839,7 +850,7 @@ mod tests {
                 let num = (x0 as i64) * (y1 - y0) as i64 + (ys - y0 as i64) * (x1 - x0) as i64
                     - h * (y1 - y0) as i64;
                 let want = div_ceil(num, ((y1 - y0) as i64) << s);
-                assert_eq!(d.x as i64, want, "edge {x0},{y0}->{x1},{y1} row {row}");
+                assert_eq!(d.x() as i64, want, "edge {x0},{y0}->{x1},{y1} row {row}");
                 d.step();
             }
         }
