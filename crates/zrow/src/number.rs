@@ -499,8 +499,10 @@ fn rsqrt_bits(raw: i32, f: u32) -> i32 {
 /// `None` for a zero normal.
 #[inline]
 fn face_normal_i16(a: [i16; 3], b: [i16; 3], c: [i16; 3], f: u32) -> Option<[i32; 3]> {
-    let e = |p: [i16; 3]| [0, 1, 2].map(|i| p[i] as i32 - a[i] as i32);
-    let (e1, e2) = (e(b), e(c));
+    // (Written out, not `array::map`: the Cortex-M4 firmware's build left that a call.)
+    let d = |p: &[i16; 3], i: usize| p[i] as i32 - a[i] as i32;
+    let e1 = [d(&b, 0), d(&b, 1), d(&b, 2)];
+    let e2 = [d(&c, 0), d(&c, 1), d(&c, 2)];
     let p = |u: i32, v: i32| u as i64 * v as i64;
     let n = [
         p(e1[1], e2[2]) - p(e1[2], e2[1]),
@@ -513,7 +515,8 @@ fn face_normal_i16(a: [i16; 3], b: [i16; 3], c: [i16; 3], f: u32) -> Option<[i32
         return None;
     }
     let shift = (64 - m.leading_zeros()) as i32 - f as i32;
-    Some(n.map(|v| (if shift >= 0 { v >> shift } else { v << -shift }) as i32))
+    let out = |v: i64| (if shift >= 0 { v >> shift } else { v << -shift }) as i32;
+    Some([out(n[0]), out(n[1]), out(n[2])])
 }
 
 /// The fixed-point depth plane of [`Scalar::depth_plane`] in 64-bit integers: `Some(None)` for
@@ -838,7 +841,8 @@ macro_rules! impl_fixed {
                 // result is then the same from the integers themselves.
                 let f = $t::FRAC_NBITS;
                 if shift <= f && f - shift < 14 {
-                    return face_normal_i16(a, b, c, f).map(|n| n.map($t::from_bits));
+                    let [x, y, z] = face_normal_i16(a, b, c, f)?;
+                    return Some([$t::from_bits(x), $t::from_bits(y), $t::from_bits(z)]);
                 }
                 let f = |p: [i16; 3]| p.map(|v| Self::from_compact(v, shift));
                 Self::face_normal(f(a), f(b), f(c))
