@@ -231,7 +231,7 @@ impl Edge {
         Dda::new(
             q as i32,
             r as i32,
-            qs.clamp(-(1 << 15), (1 << 15) - 1) as i32,
+            qs.clamp(i32::MIN as i64, i32::MAX as i64) as i32, // `new` saturates it to 16 bits
             rs as i32,
             den as i32,
         )
