@@ -103,8 +103,9 @@ impl Slot for u32 {
 
 /// One polygon of the table: its corners in the vertex buffer, its colour, and, packed in 16
 /// bits, its first row, winding and corner count (12 bytes with `u16` slots). Its last row is
-/// not kept: [`last_row_of`] finds it from its corners the twice it is needed (counting the
-/// active list, and, for a polygon of more than three corners, activating it).
+/// not kept: [`last_row_of`] finds it from its corners where it is needed (counting the
+/// active list, and, for a polygon of more than three corners, activating it and walking its
+/// left side on).
 #[derive(Clone, Copy, Debug)]
 struct Polygon<S> {
     /// Up to [`INDEXED_CORNERS`] corners as slots of the vertex buffer, from the top one;
@@ -161,22 +162,78 @@ impl<N: Scalar> Active<N> {
     /// This row's span's left end (unclamped; the span `xl..xr` may be empty).
     #[inline]
     fn xl(&self) -> i32 {
-        self.left.dda.x()
+        self.dda[LEFT].x()
     }
 
     /// This row's span's right end (exclusive, unclamped).
     #[inline]
     fn xr(&self) -> i32 {
-        self.right.dda.x()
+        self.dda[RIGHT].x()
+    }
+
+    /// The walk of side `side` ([`LEFT`] or [`RIGHT`]).
+    #[inline]
+    fn walk(&self, side: usize) -> Walk {
+        Walk {
+            dda: self.dda[side],
+            last: (self.end[side] >> END_ROW) as i16,
+            at: (self.end[side] & RING_POSITION) as u8,
+        }
+    }
+
+    /// Sets the left side's walk to `w`, which ends on the polygon's last row if `last`.
+    #[inline]
+    fn set_left(&mut self, w: Walk, last: bool) {
+        self.dda[LEFT] = w.dda;
+        self.end[LEFT] = end_of(&w) | flag(last, LAST_EDGE);
+    }
+
+    /// Sets the right side's walk to `w` (keeping the [`PLANED`] flag).
+    #[inline]
+    fn set_right(&mut self, w: Walk) {
+        self.dda[RIGHT] = w.dda;
+        self.end[RIGHT] = end_of(&w) | (self.end[RIGHT] & PLANED);
+    }
+
+    /// Whether side `side`'s edge goes on below row `y`: its last row is later.
+    #[inline]
+    fn goes_below(&self, side: usize, y: i32) -> bool {
+        (self.end[side] >> END_ROW) as i32 > y
+    }
+
+    /// Whether the plane (`dzdx`, `dzdy`, `plane_ref`) and `z_row` are set.
+    #[inline]
+    fn planed(&self) -> bool {
+        self.end[RIGHT] & PLANED != 0
     }
 }
 
-impl Walk {
-    const ZERO: Walk = Walk {
-        dda: Dda::ZERO,
-        last: 0,
-        at: 0,
-    };
+/// [`Active::dda`]'s sides.
+const LEFT: usize = 0;
+const RIGHT: usize = 1;
+/// [`Active::end`], a side's [`Walk::last`] and [`Walk::at`] in 16 bits: the last row from bit
+/// [`END_ROW`] (rows are below [`MAX_VIEWPORT`] = 2^11), the position in the vertex ring in
+/// the bits of [`RING_POSITION`] (below [`MAX_POLYGON_VERTICES`] = 16), and between them a flag:
+/// the left side's edge ends on the polygon's last row ([`LAST_EDGE`]), the depth plane is set
+/// ([`PLANED`], in the right side's).
+const END_ROW: u32 = 5;
+const RING_POSITION: u16 = 15;
+const LAST_EDGE: u16 = 16;
+const PLANED: u16 = 16;
+
+/// `bit` if `on`.
+#[inline]
+fn flag(on: bool, bit: u16) -> u16 {
+    on as u16 * bit
+}
+
+/// [`Active::end`] of a walk, without flags.
+#[inline]
+fn end_of(w: &Walk) -> u16 {
+    const {
+        assert!((MAX_VIEWPORT as u32) << END_ROW <= 1 << 16 && MAX_POLYGON_VERTICES <= 16);
+    }
+    (w.last as u16) << END_ROW | w.at as u16
 }
 
 impl<N: Copy, S: Slot> Ring<'_, N, S> {
@@ -220,11 +277,15 @@ struct Walk {
     at: u8,
 }
 
-/// One entry of the active list: a polygon crossing the current row.
+/// One entry of the active list: a polygon crossing the current row (52 bytes in fixed point;
+/// f32 keeps 8 more, to evaluate its plane afresh: tested). Its last row is not kept: it retires when its left edge, which covers every row
+/// it does, ends on that row ([`LAST_EDGE`]).
 #[derive(Clone, Copy, Debug)]
 struct Active<N: Scalar> {
-    left: Walk,
-    right: Walk,
+    /// The walks of its left and right edges ([`LEFT`], [`RIGHT`]): [`Walk::dda`], and the
+    /// rest of [`Walk`] packed with a flag each ([`end_of`]).
+    dda: [Dda; 2],
+    end: [u16; 2],
     /// The depth plane's gradients (per pixel right, per row down), once something needed
     /// the plane ([`Planes::ensure`]): most polygons of a mesh never meet another in depth,
     /// and are drawn without one.
@@ -236,9 +297,6 @@ struct Active<N: Scalar> {
     /// The plane's depth at column 0 of the current row: a depth in this row is then one
     /// multiply-add, [`depth_at`].
     z_row: N,
-    /// Whether the plane (`dzdx`, `dzdy`, `plane_ref`) and `z_row` are set.
-    planed: bool,
-    last_row: i16,
     /// Scene order: the index in the polygon table.
     poly: u16,
     color: Rgb565,
@@ -527,14 +585,12 @@ impl<
             polygons: Vec::new(),
             order: Vec::new(),
             active: [Active {
-                left: Walk::ZERO,
-                right: Walk::ZERO,
+                dda: [Dda::ZERO; 2],
+                end: [0; 2],
                 dzdx: N::ZERO,
                 dzdy: N::ZERO,
                 plane_ref: N::PLANE_REF_ZERO,
                 z_row: N::ZERO,
-                planed: false,
-                last_row: 0,
                 poly: 0,
                 color: Rgb565::BLACK,
             }; A],
@@ -945,15 +1001,18 @@ impl<
         };
         let cue = self.affine_cue();
         let a = &mut self.active[slot as usize];
-        a.left = left;
-        a.right = right;
-        a.planed = false;
         // A triangle's first two edges: one of them ends at its lowest corner, its last row.
-        a.last_row = if ring.len() == 3 {
+        let last_row = if ring.len() == 3 {
             left.last.max(right.last)
         } else {
             last_row_of(&ring, cfg) as i16
         };
+        a.dda = [left.dda, right.dda];
+        // Not planed.
+        a.end = [
+            end_of(&left) | flag(left.last == last_row, LAST_EDGE),
+            end_of(&right),
+        ];
         a.poly = i;
         a.color = p.color;
         if want_depth || cue.is_some() {
@@ -1021,25 +1080,25 @@ impl<
             let Some(a) = active.get_mut(slot as usize) else {
                 continue; // cannot happen: keys hold occupied slots
             };
-            if a.last_row as i32 <= y {
+            // The left edge covers row `y`, so on the polygon's last row it ends there.
+            if a.goes_below(LEFT, y) {
+                a.dda[LEFT].step();
+            } else if a.end[LEFT] & LAST_EDGE != 0 {
                 let _ = free.push(slot); // at most A slots
                 continue;
-            }
-            if a.left.last as i32 > y {
-                a.left.dda.step();
             } else {
-                next_edge(a, false, polygons, vertices, y + 1, cfg, edges);
+                next_edge(a, LEFT, polygons, vertices, y + 1, cfg, edges);
             }
-            if a.right.last as i32 > y {
-                a.right.dda.step();
+            if a.goes_below(RIGHT, y) {
+                a.dda[RIGHT].step();
             } else {
-                next_edge(a, true, polygons, vertices, y + 1, cfg, edges);
+                next_edge(a, RIGHT, polygons, vertices, y + 1, cfg, edges);
             }
             // Exact formats step (the same bits; unplaned, a harmless wrapping add to a value
             // nobody reads, cheaper than the test); f32 evaluates, so no error accumulates.
             if N::EXACT_STEPS {
                 a.z_row = a.z_row.step(a.dzdy, 1);
-            } else if a.planed {
+            } else if a.planed() {
                 a.z_row = a.plane_at(y, 0, y + 1);
             }
             cover += span_cover(a.xl(), a.xr(), w);
@@ -1306,7 +1365,7 @@ impl<
             if first >= end {
                 continue; // no whole block
             }
-            if !a.planed {
+            if !a.planed() {
                 // Checked here: the heavy rows meet each polygon once a row, its plane once.
                 planes.ensure(a);
             }
@@ -1330,7 +1389,7 @@ impl<
             if x0 >= x1 {
                 continue;
             }
-            if !a.planed {
+            if !a.planed() {
                 planes.ensure(a);
             }
             let dzdx = a.dzdx;
@@ -1612,7 +1671,7 @@ fn triangle_walks<N: Copy, S: Slot>(
 #[inline(never)]
 fn next_edge<N: Scalar, S: Slot>(
     a: &mut Active<N>,
-    right: bool,
+    side: usize,
     polygons: &[Polygon<S>],
     vertices: &[RasterVertex<N>],
     y: i32,
@@ -1624,30 +1683,42 @@ fn next_edge<N: Scalar, S: Slot>(
         vertices,
         polygon: p,
     };
-    let w = if right { &mut a.right } else { &mut a.left };
+    let at = (a.end[side] & RING_POSITION) as u8;
     // Clockwise on the display: forward from the top runs down the right side.
-    let forward = right == p.clockwise();
-    let next = if ring.len() == 3 {
+    let forward = (side == RIGHT) == p.clockwise();
+    let triangle = ring.len() == 3;
+    let next = if triangle {
         // A triangle's side has two edges (from its top, recorded first): the second runs
         // from the end of the first to the third corner, forward or backward round the
-        // ring. (Beyond it the side turns up: nothing more, as `walk_from` would find.)
-        let at = w.at as usize;
+        // ring, its lowest. (Beyond it the side turns up: nothing more, as `walk_from` would
+        // find.)
+        let at = at as usize;
         let to = if forward { (at + 1) % 3 } else { (at + 2) % 3 };
         edge_walk(ring.get(at), ring.get(to), to, y, cfg)
     } else {
-        walk_from(ring, w.at, forward, y, cfg)
+        walk_from(ring, at, forward, y, cfg)
     };
-    if let Some(next) = next {
-        *w = next;
-        *edges += 1;
+    match (next, side) {
+        (Some(next), RIGHT) => a.set_right(next),
+        (Some(next), _) => {
+            let last = triangle || next.last as i32 == last_row_of(&ring, cfg);
+            a.set_left(next, last);
+        }
+        // Cannot happen (a polygon's left side covers every row it does): retire it.
+        (None, LEFT) => {
+            a.end[LEFT] |= LAST_EDGE;
+            return;
+        }
+        (None, _) => return,
     }
+    *edges += 1;
 }
 
 /// The affine cue one row down: each edge's factor stepped, or set up again where the edge
 /// changed.
 fn step_cue<N: Scalar>(c: &Cue<N>, a: &Active<N>, e: &mut EdgeCue<N>, y: i32) {
-    for side in 0..2 {
-        let w = if side == 0 { a.left } else { a.right };
+    for side in [LEFT, RIGHT] {
+        let w = a.walk(side);
         let k = 2 * side;
         if e.last[side] == w.last {
             e.f[k] = e.f[k].add(e.f[k + 1]);
@@ -1839,7 +1910,7 @@ fn insertion_sort(v: &mut [u32]) {
 /// Affine depth cue across `x0..x1` (already filled with the polygon's colour): the factor
 /// interpolated linearly between the edges' crossings of the row (one division per span).
 fn cue_span<N: Scalar>(intensity: &mut [Rgb565], a: &Active<N>, e: &EdgeCue<N>, x0: i32, x1: i32) {
-    let (cl, cr) = (a.left.dda.crossing::<N>(), a.right.dda.crossing::<N>());
+    let (cl, cr) = (a.dda[LEFT].crossing::<N>(), a.dda[RIGHT].crossing::<N>());
     let slope = e.f[2].sub(e.f[0]).div(cr.sub(cl)).unwrap_or(N::ZERO);
     let at = N::from_int;
     let mut f = e.f[0].add(at(x0).sub(cl).mul(slope));
@@ -1893,7 +1964,7 @@ impl<N: Scalar, S: Slot> Planes<'_, N, S> {
     /// the plane through its vertices in canonical order, the same bits whenever computed.
     #[inline]
     fn ensure(&self, a: &mut Active<N>) {
-        if a.planed {
+        if a.planed() {
             return;
         }
         let ring = Ring {
@@ -1910,7 +1981,7 @@ impl<N: Scalar, S: Slot> Planes<'_, N, S> {
         });
         (a.dzdx, a.dzdy, a.plane_ref) = (plane.dzdx, plane.dzdy, N::plane_ref(&plane));
         a.z_row = plane.at(0, self.y);
-        a.planed = true;
+        a.end[RIGHT] |= PLANED;
     }
 }
 
@@ -2139,6 +2210,16 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The active entry's size, as its doc says: a field added or a layout that pads shows
+    /// here, and in every frame's RAM.
+    #[test]
+    fn active_entries_are_52_bytes_in_fixed_point() {
+        use core::mem::size_of;
+        assert_eq!(size_of::<Active<Q16_16>>(), 52);
+        assert_eq!(size_of::<Active<Q24_8>>(), 52);
+        assert_eq!(size_of::<Active<f32>>(), 60);
     }
 
     /// `ram_bytes` is the struct's size at those capacities, but for the padding that aligns
