@@ -208,6 +208,9 @@ impl<N: Scalar> Active<N> {
     }
 }
 
+/// [`Scanline::free`] when no slot is free (no slot: the active capacity is below 2^16 − 1).
+const NO_SLOT: u16 = u16::MAX;
+
 /// [`Active::dda`]'s sides.
 const LEFT: usize = 0;
 const RIGHT: usize = 1;
@@ -463,8 +466,9 @@ pub struct Scanline<
     /// polygon's plane is level 255 everywhere).
     shades: G,
     used: usize,
-    /// Free slots of `active`.
-    free: Vec<u16, A>,
+    /// The last slot of `active` freed, or [`NO_SLOT`]: a stack of the free slots, each
+    /// entry's `poly` holding the slot freed before it.
+    free: u16,
     /// The occupied slots of `active` by left end this row, as sort keys: [`key`].
     sorted: Vec<u32, A>,
     /// Polygons open at the current piece of the row (their slots; those that closed behind
@@ -597,7 +601,7 @@ impl<
             cues: C::EMPTY,
             shades: G::EMPTY,
             used: 0,
-            free: Vec::new(),
+            free: NO_SLOT,
             sorted: Vec::new(),
             open: Vec::new(),
             // All zero, so a `static` renderer lands in .bss, not copied from flash; both rows
@@ -660,7 +664,7 @@ impl<
         self.polygons.clear();
         self.used = 0;
         self.cover = 0;
-        self.free.clear();
+        self.free = NO_SLOT;
         self.sorted.clear();
         let (mut polys, mut uncached) = (0u32, false);
         let (table, shades) = (&mut self.polygons, &mut self.shades);
@@ -991,12 +995,14 @@ impl<
             return; // cannot happen: the outline covers row y
         };
         self.edges += 2;
-        let Some(slot) = self.free.pop().or_else(|| {
-            (self.used < A).then(|| {
-                self.used += 1;
-                (self.used - 1) as u16
-            })
-        }) else {
+        let slot = if let Some(a) = self.active.get(self.free as usize) {
+            let slot = self.free;
+            self.free = a.poly; // popped
+            slot
+        } else if self.used < A {
+            self.used += 1;
+            (self.used - 1) as u16
+        } else {
             return; // cannot happen: `max_active` checked the capacity for every row
         };
         let cue = self.affine_cue();
@@ -1084,7 +1090,7 @@ impl<
             if a.goes_below(LEFT, y) {
                 a.dda[LEFT].step();
             } else if a.end[LEFT] & LAST_EDGE != 0 {
-                let _ = free.push(slot); // at most A slots
+                (a.poly, *free) = (*free, slot); // pushed
                 continue;
             } else {
                 next_edge(a, LEFT, polygons, vertices, y + 1, cfg, edges);
@@ -2167,7 +2173,7 @@ pub fn ram_bytes_uncued<N: Scalar>(req: &Requirements) -> usize {
         + req.vertices as usize * size_of::<RasterVertex<N>>()
         + req.polygons as usize * (size_of::<Polygon<u16>>() + size_of::<u16>())
         + req.active_polygons as usize
-            * (size_of::<Active<N>>() + 2 * size_of::<u16>() + size_of::<u32>())
+            * (size_of::<Active<N>>() + size_of::<u16>() + size_of::<u32>())
         + req.width as usize * (size_of::<N>() + size_of::<Rgb565>())
 }
 
