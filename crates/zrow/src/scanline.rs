@@ -208,9 +208,6 @@ impl<N: Scalar> Active<N> {
     }
 }
 
-/// [`Scanline::free`] when no slot is free (no slot: the active capacity is below 2^16 − 1).
-const NO_SLOT: u16 = u16::MAX;
-
 /// [`Active::dda`]'s sides.
 const LEFT: usize = 0;
 const RIGHT: usize = 1;
@@ -466,8 +463,10 @@ pub struct Scanline<
     /// polygon's plane is level 255 everywhere).
     shades: G,
     used: usize,
-    /// The last slot of `active` freed, or [`NO_SLOT`]: a stack of the free slots, each
-    /// entry's `poly` holding the slot freed before it.
+    /// One more than the last slot of `active` freed, 0 if none is free: a stack of the free
+    /// slots, each free entry's `poly` holding the one freed before it (so counted). Zero when
+    /// empty, like the rest of a new renderer, whose static is then zeroed at reset instead
+    /// of copied from flash.
     free: u16,
     /// The occupied slots of `active` by left end this row, as sort keys: [`key`].
     sorted: Vec<u32, A>,
@@ -601,7 +600,7 @@ impl<
             cues: C::EMPTY,
             shades: G::EMPTY,
             used: 0,
-            free: NO_SLOT,
+            free: 0,
             sorted: Vec::new(),
             open: Vec::new(),
             // All zero, so a `static` renderer lands in .bss, not copied from flash; both rows
@@ -664,7 +663,7 @@ impl<
         self.polygons.clear();
         self.used = 0;
         self.cover = 0;
-        self.free = NO_SLOT;
+        self.free = 0;
         self.sorted.clear();
         let (mut polys, mut uncached) = (0u32, false);
         let (table, shades) = (&mut self.polygons, &mut self.shades);
@@ -995,8 +994,8 @@ impl<
             return; // cannot happen: the outline covers row y
         };
         self.edges += 2;
-        let slot = if let Some(a) = self.active.get(self.free as usize) {
-            let slot = self.free;
+        let slot = if let Some(a) = self.active.get((self.free as usize).wrapping_sub(1)) {
+            let slot = self.free - 1;
             self.free = a.poly; // popped
             slot
         } else if self.used < A {
@@ -1090,7 +1089,7 @@ impl<
             if a.goes_below(LEFT, y) {
                 a.dda[LEFT].step();
             } else if a.end[LEFT] & LAST_EDGE != 0 {
-                (a.poly, *free) = (*free, slot); // pushed
+                (a.poly, *free) = (*free, slot + 1); // pushed (below A, so 2^16 − 1 at most)
                 continue;
             } else {
                 next_edge(a, LEFT, polygons, vertices, y + 1, cfg, edges);
