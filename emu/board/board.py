@@ -18,10 +18,17 @@ PCLK2 = HCLK on both boards).
 The emulator is Unicorn (QEMU's CPU core as a library) from its PyPI wheel: it installs in
 seconds with no C toolchain, where the Rust `unicorn-engine` crate builds Unicorn's C sources
 with CMake on every fresh machine. Instructions are counted per translated block (capstone).
+
+Profile (`--profile N`): the same count kept per block and charged to the function (ELF symbol)
+the block starts in, printed as the N functions the run spent most cycles in: where the board's
+time goes, from the shipped ELF itself (inlined code is charged to the function it was inlined
+into; legacy Rust symbols are demangled, their hashes dropped).
 """
 
 import argparse
+import bisect
 import collections
+import re
 import struct
 import sys
 
@@ -66,7 +73,7 @@ class Board:
     BLOCKS = []  # (base, name) of the chip's peripheral blocks
     GPIO_ODR = 0  # GPIOA's output data register
 
-    def __init__(self, elf, stream, frames_per_scene, frames, scenes=None):
+    def __init__(self, elf, stream, frames_per_scene, frames, scenes=None, profile=False):
         self.uc = Uc(UC_ARCH_ARM, UC_MODE_THUMB | UC_MODE_MCLASS)
         self.uc.ctl_set_cpu_model(self.CPU)
         self.uc.mem_map(FLASH, self.FLASH_SIZE, UC_PROT_READ | UC_PROT_EXEC)
@@ -102,6 +109,8 @@ class Board:
         self.waited = 0
         self.pending = ("", [])
         self.block_len = {}
+        self.elf = elf
+        self.executed = collections.Counter() if profile else None  # instructions per block
         self.cs = capstone.Cs(capstone.CS_ARCH_ARM, capstone.CS_MODE_THUMB | capstone.CS_MODE_MCLASS)
         for base, size in [(0x4000_0000, 0x8_0000), (0xE000_0000, 0x10_0000)]:
             self.uc.mmio_map(base, size, self.read, base, self.write, base)
@@ -127,6 +136,8 @@ class Board:
             n = sum(1 for _ in self.cs.disasm_lite(code, address)) or 1
             self.block_len[address] = n
         self.time += n
+        if self.executed is not None:
+            self.executed[address] += n
         sp = uc.reg_read(UC_ARM_REG_SP)
         if sp < self.lowest_sp:
             self.lowest_sp = sp
@@ -322,10 +333,54 @@ class Board:
                                f"not modelled")
         return self.errors
 
+    def profile(self):
+        """Instructions executed per function, most first: (name, count) pairs, each block
+        charged to the function symbol it starts in (`?` outside every one)."""
+        with open(self.elf, "rb") as f:
+            funcs = sorted((s["st_value"] & ~1, s["st_size"], s.name)
+                           for s in ELFFile(f).get_section_by_name(".symtab").iter_symbols()
+                           if s["st_info"]["type"] == "STT_FUNC" and s["st_size"] > 0)
+        starts = [f[0] for f in funcs]
+        per = collections.Counter()
+        for address, n in self.executed.items():
+            i = bisect.bisect_right(starts, address) - 1
+            inside = i >= 0 and address < funcs[i][0] + funcs[i][1]
+            per[demangle(funcs[i][2]) if inside else "?"] += n
+        return per.most_common()
+
     def stack_peak(self):
         """Bytes of stack the run took at its deepest: from the stack's top to the lowest stack
         pointer seen at the start of a block."""
         return self.stack_start - self.lowest_sp
+
+
+# Legacy Rust mangling's escapes (`$LT$` is `<`, ...).
+ESCAPES = {"SP": "@", "BP": "*", "RF": "&", "LT": "<", "GT": ">", "LP": "(", "RP": ")",
+           "C": ","}
+
+
+def demangle(name):
+    """A legacy-mangled Rust symbol (`_ZN4zrow8scanline...17h<hash>E`) as a path without its
+    hash (`zrow::scanline::...`); any other name as it is."""
+    if not (name.startswith("_ZN") and name.endswith("E")):
+        return name
+    parts, i, body = [], 3, name[:-1]
+    while i < len(body) and body[i].isdigit():
+        j = i
+        while body[j].isdigit():
+            j += 1
+        n = int(body[i:j])
+        parts.append(body[j:j + n])
+        i = j + n
+    if parts and re.fullmatch(r"h[0-9a-f]{16}", parts[-1]):
+        parts.pop()
+
+    def unescape(p):
+        p = p[1:] if p.startswith("_$") else p
+        p = re.sub(r"\$u([0-9a-f]+)\$", lambda m: chr(int(m.group(1), 16)), p)
+        p = re.sub(r"\$([A-Z]+)\$", lambda m: ESCAPES.get(m.group(1), m.group(0)), p)
+        return p.replace("..", "::")
+    return "::".join(unescape(p) for p in parts)
 
 
 def self_test(chip, elf, address, named):
@@ -353,16 +408,25 @@ def main(chip, doc, probe):
     p.add_argument("--scenes", help="the demo scenes the firmware shows, comma-separated "
                    "(default: all of zrow_scenes::DEMOS)")
     p.add_argument("--budget", type=int, default=400_000_000, help="instructions at most")
+    p.add_argument("--profile", type=int, metavar="N", default=0,
+                   help="print the N functions the run spent most cycles in")
     a = p.parse_args()
     if a.self_test:
         return self_test(chip, a.elf, *probe)
     if a.stream is None:
         p.error("a stream file is needed")
     scenes = a.scenes.split(",") if a.scenes else None
-    board = chip(a.elf, a.stream, a.frames_per_scene, a.frames, scenes)
+    board = chip(a.elf, a.stream, a.frames_per_scene, a.frames, scenes, a.profile > 0)
     errors = board.run(a.budget)
     print(f"{chip.NAME}: {board.marks} frames, {board.time} cycles emulated, stack peak "
           f"{board.stack_peak()} bytes")
+    if a.profile:
+        per = board.profile()
+        total = sum(n for _, n in per)
+        print(f"{chip.NAME}: profile: {total} instructions executed (the other "
+              f"{board.time - total} cycles: waits for SPI, DMA and SysTick), by function:")
+        for name, n in per[:a.profile]:
+            print(f"{n:12d} {100 * n / total:5.1f} %  {name}")
     for e in errors[:40]:
         print(f"{chip.NAME}: error: {e}", file=sys.stderr)
     sys.exit(1 if errors else 0)

@@ -17,7 +17,7 @@ Time: one instruction is taken as one cycle at the firmware's 72 MHz (an estimat
 on the M4: the M3 has no FPU, so f32 arithmetic is library calls, counted as their
 instructions). SPI bytes take 8 clocks of SCK (PCLK2 / 2^(BR+1)).
 
-usage: f103.py ELF STREAM --frames-per-scene N --frames M --scenes interlocked,cube
+usage: f103.py ELF STREAM --frames-per-scene N --frames M --scenes interlocked,cube [--profile N]
        f103.py ELF --self-test   (an access the model does not know must fail the run)
 """
 

@@ -17,7 +17,7 @@ reported by address and name, and fails the run.
 Time: one instruction is taken as one cycle at the firmware's 100 MHz (an estimate: wait states,
 multi-cycle instructions and the bus differ). SPI bytes take 8 clocks of SCK (PCLK2 / 2^(BR+1)).
 
-usage: f411.py ELF STREAM --frames-per-scene N --frames M
+usage: f411.py ELF STREAM --frames-per-scene N --frames M [--profile N]
        f411.py ELF --self-test   (an access the model does not know must fail the run)
 """
 

@@ -15,9 +15,12 @@
 #                  over before it is full: the rest is stale);
 #   no-inversion   the panel's colour inversion (INVON) left out of its initialisation.
 #
+# Between them, the F411's first frame of each scene again with `--profile`: the cycles each
+# function of the shipped ELF took (profile.txt; board.py says how).
+#
 # usage: emu/board/run.sh [FRAMES_PER_SCENE]   (default 3: 9 frames, the three demo scenes)
-# Writes target/board/: the stream files, shipped.txt and bluepill.txt (the tables), the
-# mutants' logs.
+# Writes target/board/: the stream files, shipped.txt and bluepill.txt (the tables),
+# profile.txt, the mutants' logs.
 # Installs python3 and python3-venv with apt-get if missing, and Unicorn, capstone and
 # pyelftools (pinned)
 # into emu/board/.venv from PyPI.
@@ -73,6 +76,13 @@ echo "== the shipped firmware: $frames frames, $per_scene per demo scene"
 # Its table is kept for scripts/check-figures.sh (the README quotes it).
 # Its own target directory: the ELF `cargo run --release` flashes.
 check "$root/firmware" shipped "$root/firmware/target" zrow-firmware | tee "$out/shipped.txt"
+
+echo "== where the shipped F411's cycles go: a frame of each demo scene, by function (--profile)"
+"$py" "$here/f411.py" "$root/firmware/target/thumbv7em-none-eabihf/release/zrow-firmware" \
+  "$out/profile.stream" --frames-per-scene 1 --frames 3 --profile 20 | tee "$out/profile.txt"
+# The blocks are charged to the functions they are in: the renderer's sweep is among the first.
+grep -q '^ .*zrow::scanline::Scanline<.*>::resolve_row$' "$out/profile.txt" ||
+  { echo "error: the profile does not name the scan-line renderer's resolve_row" >&2; exit 1; }
 
 echo "== the Blue Pill (STM32F103C8): its shipped firmware, $((2 * per_scene)) frames of its two scenes"
 bluepill="$root/firmware/bluepill"
