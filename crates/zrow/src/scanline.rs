@@ -278,8 +278,9 @@ struct Walk {
 }
 
 /// One entry of the active list: a polygon crossing the current row (52 bytes in fixed point;
-/// f32 keeps 8 more, to evaluate its plane afresh: tested). Its last row is not kept: it retires when its left edge, which covers every row
-/// it does, ends on that row ([`LAST_EDGE`]).
+/// f32 keeps 8 more, to evaluate its plane afresh: tested). Its last row is not kept: it
+/// retires when its left edge, which covers every row it does, ends on that row
+/// ([`LAST_EDGE`]).
 #[derive(Clone, Copy, Debug)]
 struct Active<N: Scalar> {
     /// The walks of its left and right edges ([`LEFT`], [`RIGHT`]): [`Walk::dda`], and the
