@@ -164,9 +164,9 @@ mutant half-row zrow-st7789/src/dma.rs \
 mutant no-inversion demo/src/lib.rs \
   '.invert_colors(ColorInversion::Inverted)=>'
 
-# The Blue Pill's stack check must catch a stack that reaches the statics: a copy whose
-# renderer is sized with a 55 % margin (about 5 KB more of .bss: its stack room falls below
-# the 3.1 KB the frames need, and it still links in 20 KB).
+# The Blue Pill's stack check must catch a stack that reaches the statics: a copy whose RAM
+# (its memory.x) holds its statics and only half the stack the shipped frames took, so the
+# stack must run into them (however large the renderer grows or shrinks).
 echo "== mutant bluepill-stack: the check must fail"
 copy="$out/mutant-bluepill-stack"
 rm -rf "$copy" && mkdir -p "$copy"
@@ -174,8 +174,19 @@ cp -r "$bluepill/src" "$bluepill/Cargo.toml" "$bluepill/Cargo.lock" "$bluepill/b
   "$bluepill/memory.x" "$bluepill/.cargo" "$copy/"
 sed -i "s#path = \"\\.\\./\\.\\./#path = \"$root/#g; s#path = \"\\.\\./demo\"#path = \"$root/firmware/demo\"#" \
   "$copy/Cargo.toml"
-sed -i 's/DEMO_MEASURED_EACH\[0\].with_margin(5)/DEMO_MEASURED_EACH[0].with_margin(55)/' "$copy/src/main.rs"
-grep -q 'with_margin(55)' "$copy/src/main.rs" || { echo "error: the mutation does not apply" >&2; exit 1; }
+peak=$(sed -n 's/.* stack peak \([0-9]*\) bytes$/\1/p' "$out/bluepill.txt")
+# The statics end at cortex-m-rt's `_stack_end` (the stack's floor), counted from RAM's origin.
+statics=$("$py" - "$bp_elf" <<'PY'
+import sys
+from elftools.elf.elffile import ELFFile
+symbols = ELFFile(open(sys.argv[1], "rb")).get_section_by_name(".symtab")
+print(next(s["st_value"] for s in symbols.iter_symbols() if s.name == "_stack_end") - 0x2000_0000)
+PY
+)
+[ -n "$peak" ] && [ "$peak" -gt 0 ] || { echo "error: no stack peak in $out/bluepill.txt" >&2; exit 1; }
+ram=$(( (statics + peak / 2 + 7) / 8 * 8 ))
+sed -i "s/LENGTH = 20K/LENGTH = $ram/" "$copy/memory.x"
+grep -q "LENGTH = $ram\$" "$copy/memory.x" || { echo "error: the mutation does not apply" >&2; exit 1; }
 # In the shipped Blue Pill firmware's target directory under another name, as above.
 sed -i 's/^name = "zrow-bluepill"$/name = "zrow-bluepill-mutant"/' "$copy/Cargo.toml"
 grep -q '^name = "zrow-bluepill-mutant"$' "$copy/Cargo.toml" ||
