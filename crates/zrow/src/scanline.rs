@@ -1013,12 +1013,9 @@ impl<
         } else {
             last_row_of(&ring, cfg) as i16
         };
-        a.dda = [left.dda, right.dda];
-        // Not planed.
-        a.end = [
-            end_of(&left) | flag(left.last == last_row, LAST_EDGE),
-            end_of(&right),
-        ];
+        a.end[RIGHT] = 0; // not planed
+        a.set_left(left, left.last == last_row);
+        a.set_right(right);
         a.poly = i;
         a.color = p.color;
         if want_depth || cue.is_some() {
