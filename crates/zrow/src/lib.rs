@@ -150,6 +150,13 @@ pub use zbuffer::ZBuffer;
 /// ([`scanline::Uncued`]: 20 bytes less per active slot in a 32-bit format), for a renderer
 /// that draws flat-shaded or with the perspective-correct cue only.
 ///
+/// `scanline_for!(N, REQ, display)` is `uncued` without a depth row either
+/// ([`scanline::NoDepth`]: a row's width of depths and 64 bytes less in a 32-bit format), for a
+/// renderer whose sink takes colours only, as a display's does, drawing flat-shaded: a sink
+/// that reads depth, or the perspective-correct cue (whose factor comes from the depth row), is
+/// then [`Error::Unsupported`], and rows of heavy overlap are swept like the others instead of
+/// being resolved against a depth row ([`scanline::ram_bytes_display`]).
+///
 /// `scanline_for!(N, REQ, gouraud)` draws smooth shading
 /// ([`Shading::Gouraud`](shading::Shading::Gouraud)): uncued, with an intensity plane per
 /// polygon ([`scanline::ShadeStore`]; 24 bytes a polygon in a 32-bit format,
@@ -162,6 +169,16 @@ macro_rules! scanline_for {
     };
     ($n:ty, $req:expr, uncued) => {
         $crate::scanline_for!(@ $n, $req, u16, $crate::scanline::Uncued)
+    };
+    ($n:ty, $req:expr, display) => {
+        $crate::scanline_for!(
+            @ $n,
+            $req,
+            u16,
+            $crate::scanline::Uncued,
+            $crate::scanline::Flat,
+            $crate::scanline::NoDepth
+        )
     };
     ($n:ty, $req:expr, gouraud) => {
         $crate::scanline_for!(

@@ -36,7 +36,10 @@
 //! exactly (the property tests check this against an exact reference).
 //!
 //! The depth row is written only when someone reads it ([`RowSink::WANTS_DEPTH`], or the
-//! perspective-correct depth cue); otherwise a row is its colours alone, written span by span.
+//! perspective-correct depth cue), or a row is heavy; otherwise a row is its colours alone,
+//! written span by span. A renderer for a sink that takes colours only can leave it out
+//! altogether ([`NoDepth`](crate::scanline::NoDepth), `scanline_for!(N, REQ, display)`: a
+//! row's width of depths less), sweeping its heavy rows too.
 //!
 //! Every capacity is checked while the tables are built, before the first row is sent.
 
@@ -73,6 +76,8 @@ mod sealed {
     impl Sealed for u32 {}
     impl<N, const K: usize> Sealed for [super::EdgeCue<N>; K] {}
     impl Sealed for super::Uncued {}
+    impl<N, const W: usize> Sealed for super::Depths<N, W> {}
+    impl Sealed for super::NoDepth {}
     impl<N, const K: usize> Sealed for [crate::scene::IntensityPlane<N>; K] {}
     impl Sealed for super::Flat {}
 }
@@ -425,6 +430,63 @@ impl<N> ShadeStore<N> for Flat {
     fn set(&mut self, _: usize, _: IntensityPlane<N>) {}
 }
 
+/// Where a scan-line renderer keeps a row's depths (its `D` parameter): [`Depths`], the row
+/// and its hierarchical depth (the default), or [`NoDepth`], none — a row's width of depths
+/// and 64 bytes less in a 32-bit format, for a renderer whose sink takes colours only.
+///
+/// The sweep that resolves a row needs no depth row: it compares polygons' depth planes where
+/// their spans meet. The row is kept for what does need it: a sink that reads depth
+/// ([`RowSink::WANTS_DEPTH`]), the perspective-correct depth cue (its factor is taken from
+/// the row's depths), and rows of heavy overlap, which the default renderer resolves pixel by
+/// pixel against it (spans covering more than twice the row). Without it the first two are [`Error::Unsupported`]
+/// and a heavy row is swept like any other — the same pixels, at the sweep's cost.
+pub trait DepthRow<N>: sealed::Sealed {
+    /// The store with nothing set (all zero: a `static` renderer stays in `.bss`).
+    const EMPTY: Self;
+    /// Whether it keeps the row.
+    const KEEPS: bool;
+    /// The depth row and the hierarchical depth (empty if not kept).
+    #[doc(hidden)]
+    fn parts(&mut self) -> (&mut [N], &mut [N]);
+}
+
+/// A row of depths, `W` wide, and its hierarchical depth: the default [`DepthRow`].
+#[derive(Clone, Copy, Debug)]
+pub struct Depths<N, const W: usize> {
+    row: [N; W],
+    /// [`Scanline::resolve_by_depth`]'s hierarchical depth: the largest depth stored in each
+    /// block of [`HIZ_BLOCK`] pixels (or more, for rows wider than 256 pixels).
+    hiz: [N; HIZ_BLOCKS],
+}
+
+impl<N: Scalar, const W: usize> DepthRow<N> for Depths<N, W> {
+    // All zero, so a `static` renderer lands in .bss, not copied from flash; the row is
+    // rewritten in full before it is sent.
+    const EMPTY: Self = Depths {
+        row: [N::ZERO; W],
+        hiz: [N::ZERO; HIZ_BLOCKS],
+    };
+    const KEEPS: bool = true;
+    #[inline]
+    fn parts(&mut self) -> (&mut [N], &mut [N]) {
+        (&mut self.row, &mut self.hiz)
+    }
+}
+
+/// A scan-line renderer without a depth row ([`DepthRow`]): `Scanline<N, W, V, P, A, u16,
+/// Uncued, Flat, NoDepth>`, or `scanline_for!(N, REQ, display)`.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NoDepth;
+
+impl<N> DepthRow<N> for NoDepth {
+    const EMPTY: Self = NoDepth;
+    const KEEPS: bool = false;
+    #[inline]
+    fn parts(&mut self) -> (&mut [N], &mut [N]) {
+        (&mut [], &mut [])
+    }
+}
+
 /// The scan-line renderer.
 ///
 /// - `N`: number format ([`crate::Q16_16`], [`crate::Q24_8`] or `f32`);
@@ -436,7 +498,9 @@ impl<N> ShadeStore<N> for Flat {
 /// - `C`: where the affine depth cue's per-edge state is kept ([`CueStore`]; [`Uncued`] for
 ///   a renderer that never draws with it: 20 bytes less per active slot);
 /// - `G`: where smooth shading's intensity planes are kept ([`ShadeStore`]; [`Flat`], the
-///   default, keeps none).
+///   default, keeps none);
+/// - `D`: where a row's depths are kept ([`DepthRow`]; [`NoDepth`] for a renderer whose sink
+///   takes colours only: a row's width of depths less).
 ///
 /// Choose the capacities with [`crate::requirements()`]. All memory is in the struct:
 /// [`Scanline::RAM_BYTES`] is the whole of it.
@@ -449,6 +513,7 @@ pub struct Scanline<
     S: Slot = u16,
     C = [EdgeCue<N>; A],
     G = Flat,
+    D = Depths<N, W>,
 > {
     /// The frame's vertex buffer: geometry writes every vertex here once, projected and
     /// snapped; polygons refer to it by slot.
@@ -474,7 +539,8 @@ pub struct Scanline<
     /// Polygons open at the current piece of the row (their slots; those that closed behind
     /// the front are pruned when a new front is sought).
     open: Vec<u16, A>,
-    depth: [N; W],
+    /// The row's depths, if kept.
+    depth: D,
     intensity: [Rgb565; W],
     /// This frame's depth cue, if `cued` (shading is not flat): see [`Self::frame_cue`].
     cue: Cue<N>,
@@ -485,9 +551,6 @@ pub struct Scanline<
     row: RowState,
     /// Pixels the active spans cover in the current row, summed (overlaps counted again).
     cover: i32,
-    /// [`Scanline::resolve_by_depth`]'s hierarchical depth: the largest depth stored in each
-    /// block of [`HIZ_BLOCK`] pixels (or more, for rows wider than 256 pixels).
-    hiz: [N; HIZ_BLOCKS],
 }
 
 /// The row being drawn, and the configuration its sweep needs.
@@ -549,7 +612,8 @@ impl<
         S: Slot,
         C: CueStore<N>,
         G: ShadeStore<N>,
-    > Default for Scanline<N, W, V, P, A, S, C, G>
+        D: DepthRow<N>,
+    > Default for Scanline<N, W, V, P, A, S, C, G, D>
 {
     fn default() -> Self {
         Self::new()
@@ -565,7 +629,8 @@ impl<
         S: Slot,
         C: CueStore<N>,
         G: ShadeStore<N>,
-    > Scanline<N, W, V, P, A, S, C, G>
+        D: DepthRow<N>,
+    > Scanline<N, W, V, P, A, S, C, G, D>
 {
     /// Bytes of RAM the renderer occupies (all its tables and row buffers).
     pub const RAM_BYTES: usize = core::mem::size_of::<Self>();
@@ -606,13 +671,12 @@ impl<
             open: Vec::new(),
             // All zero, so a `static` renderer lands in .bss, not copied from flash; both rows
             // are rewritten in full before each is sent.
-            depth: [N::ZERO; W],
+            depth: D::EMPTY,
             intensity: [Rgb565::BLACK; W],
             cue: Cue::UNSET,
             cued: false,
             edges: 0,
             cover: 0,
-            hiz: [N::ZERO; HIZ_BLOCKS],
             row: RowState {
                 y: 0,
                 width: 0,
@@ -638,6 +702,12 @@ impl<
         cfg: &Config,
         sink: &mut K,
     ) -> Result<FrameStats, RenderError<K::Error>> {
+        if K::WANTS_DEPTH && !D::KEEPS {
+            return Err(RenderError::Scene(Error::Unsupported {
+                feature: "a sink that reads depth: this scan-line renderer keeps no depth row \
+                          (its `D` parameter is `NoDepth`)",
+            }));
+        }
         let mut stats = self.prepare(scene, cfg)?;
         self.run_rows(cfg, sink, &mut stats)
             .map_err(RenderError::Sink)?;
@@ -658,6 +728,12 @@ impl<
                 feature: "the affine depth cue: this scan-line renderer keeps no per-edge cue \
                           state (its `C` parameter is `Uncued`; the perspective-correct cue \
                           needs none)",
+            });
+        }
+        if !D::KEEPS && cue.is_some_and(|c| c.interpolation == Interpolation::PerspectiveCorrect) {
+            return Err(Error::Unsupported {
+                feature: "the perspective-correct depth cue: this scan-line renderer keeps no \
+                          depth row to take its factor from (its `D` parameter is `NoDepth`)",
             });
         }
         (self.cue, self.cued) = (cue.unwrap_or(Cue::UNSET), cue.is_some());
@@ -904,10 +980,12 @@ impl<
         stats: &mut FrameStats,
     ) -> Result<(), K::Error> {
         let width = cfg.width as usize;
-        let want_depth = K::WANTS_DEPTH
-            || self
-                .frame_cue()
-                .is_some_and(|c| c.interpolation == Interpolation::PerspectiveCorrect);
+        // (Never without a depth row: `render` and `prepare` refuse such a frame.)
+        let want_depth = D::KEEPS
+            && (K::WANTS_DEPTH
+                || self
+                    .frame_cue()
+                    .is_some_and(|c| c.interpolation == Interpolation::PerspectiveCorrect));
         let mut cursor = 0;
         for y in 0..cfg.height as i32 {
             // Polygons whose first row this is enter the active list (their keys after the
@@ -943,7 +1021,7 @@ impl<
             };
             // A heavy row (see `resolve_row`) is resolved by depth over the active polygons in
             // any order: only the sweep needs them by left end.
-            if self.cover <= HEAVY_COVER * width as i32 || self.row.cue {
+            if self.cover <= HEAVY_COVER * width as i32 || self.row.cue || !D::KEEPS {
                 self.sort_active(old);
             }
             self.resolve_row(want_depth, stats);
@@ -953,11 +1031,11 @@ impl<
                     // depths replaced the stepped ones.)
                     Cue::shade_row_if_perspective(
                         &self.frame_cue(),
-                        &self.depth[..width],
+                        &self.depth.parts().0[..width],
                         &mut self.intensity[..width],
                     );
                 }
-                &self.depth[..width]
+                &self.depth.parts().0[..width]
             } else {
                 &[]
             };
@@ -1140,7 +1218,7 @@ impl<
     #[inline(never)]
     fn resolve_row(&mut self, want_depth: bool, stats: &mut FrameStats) {
         let w = self.row.width;
-        if self.cover > HEAVY_COVER * w && !self.row.cue {
+        if self.cover > HEAVY_COVER * w && !self.row.cue && D::KEEPS {
             self.resolve_by_depth();
             return;
         }
@@ -1342,7 +1420,8 @@ impl<
             y,
         };
         self.row.fresh = (0, width);
-        let (depth, owner) = (&mut self.depth[..w], &mut self.intensity[..w]);
+        let (depth, hiz) = self.depth.parts();
+        let (depth, owner) = (&mut depth[..w], &mut self.intensity[..w]);
         depth.fill(N::MAX);
         owner.fill(of(NOBODY));
         // Blocks of `1 << shift` pixels, at most HIZ_BLOCKS of them.
@@ -1350,7 +1429,7 @@ impl<
         while w > HIZ_BLOCKS << shift {
             shift += 1;
         }
-        let hiz = &mut self.hiz[..w.div_ceil(1 << shift)];
+        let hiz = &mut hiz[..w.div_ceil(1 << shift)];
         hiz.fill(N::MAX);
         // First the occluders: a span that covers a whole block bounds the depth the block
         // ends with by its own farthest depth there (an end of the block: depth is linear,
@@ -1519,7 +1598,7 @@ impl<
         let (a0, a1) = (x0 as usize, x1 as usize);
         let Some(slot) = slot else {
             if want_depth {
-                self.depth[a0..a1].fill(N::MAX);
+                self.depth.parts().0[a0..a1].fill(N::MAX);
             }
             return;
         };
@@ -1531,7 +1610,7 @@ impl<
                 y: self.row.y,
             };
             planes.ensure(&mut self.active[slot]);
-            fill_depth(&mut self.depth[a0..a1], &self.active[slot], x0);
+            fill_depth(&mut self.depth.parts().0[a0..a1], &self.active[slot], x0);
             if self.row.exact() {
                 let poly = self.active[slot].poly as usize;
                 self.exact_depths(poly, a0, a1);
@@ -1549,9 +1628,10 @@ impl<
     #[cold]
     #[inline(never)]
     fn exact_depths(&mut self, poly: usize, a0: usize, a1: usize) {
-        let (Some(depth), Some(colours)) =
-            (self.depth.get_mut(a0..a1), self.intensity.get_mut(a0..a1))
-        else {
+        let (Some(depth), Some(colours)) = (
+            self.depth.parts().0.get_mut(a0..a1),
+            self.intensity.get_mut(a0..a1),
+        ) else {
             return;
         };
         let cue = self.cued.then_some(self.cue);
@@ -1578,7 +1658,8 @@ impl<
         S: Slot,
         C: CueStore<N>,
         G: ShadeStore<N>,
-    > Renderer<N> for Scanline<N, W, V, P, A, S, C, G>
+        D: DepthRow<N>,
+    > Renderer<N> for Scanline<N, W, V, P, A, S, C, G, D>
 {
     const NAME: &'static str = "scanline";
     const RAM_BYTES: usize = Self::RAM_BYTES;
@@ -2174,6 +2255,14 @@ pub fn ram_bytes_uncued<N: Scalar>(req: &Requirements) -> usize {
         + req.width as usize * (size_of::<N>() + size_of::<Rgb565>())
 }
 
+/// [`ram_bytes_uncued`] for a renderer that keeps no depth row either (`Scanline<N, W, V, P,
+/// A, u16, Uncued, Flat, NoDepth>`, `scanline_for!(N, REQ, display)`): a row's width of
+/// depths and the hierarchical depth less.
+pub fn ram_bytes_display<N: Scalar>(req: &Requirements) -> usize {
+    use core::mem::size_of;
+    ram_bytes_uncued::<N>(req) - size_of::<Depths<N, 0>>() - req.width as usize * size_of::<N>()
+}
+
 /// [`ram_bytes`] for a smooth-shading renderer (`Scanline<N, W, V, P, A, u16, Uncued,
 /// [IntensityPlane<N>; P]>`, `scanline_for!(N, REQ, gouraud)`): [`ram_bytes_uncued`] and an
 /// intensity plane per polygon.
@@ -2242,6 +2331,15 @@ mod tests {
             assert!(
                 formula.abs_diff(size) <= 32,
                 "{formula} vs {size} ({} {W} {V} {P} {A})",
+                N::NAME
+            );
+            let (formula, size) = (
+                ram_bytes_display::<N>(&req),
+                Scanline::<N, W, V, P, A, u16, Uncued, Flat, NoDepth>::RAM_BYTES,
+            );
+            assert!(
+                formula.abs_diff(size) <= 32,
+                "display: {formula} vs {size} ({} {W} {V} {P} {A})",
                 N::NAME
             );
         }
