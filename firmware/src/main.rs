@@ -35,7 +35,7 @@ const SYSCLK_HZ: u32 = 100_000_000;
 /// The renderer, sized to the demo scenes: what they need at most over a turn plus 5 %
 /// (`zrow_scenes::DEMO_REQUIREMENTS`, measured with `zrow::requirements`; the torus needs 463
 /// polygons, 500 vertices, 67 active; `crates/zrow-scenes/tests/demos.rs` checks it).
-type Renderer = zrow::scanline_for!(Q16_16, zrow_scenes::DEMO_REQUIREMENTS, uncued);
+type Renderer = zrow::scanline_for!(Q16_16, zrow_scenes::DEMO_REQUIREMENTS, display);
 
 static RENDERER: ConstStaticCell<Renderer> = ConstStaticCell::new(Renderer::new());
 

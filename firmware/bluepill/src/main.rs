@@ -36,7 +36,7 @@ const SCENES: [zrow_demo::Show; 2] = [zrow_demo::INTERLOCKED, zrow_demo::CUBE];
 type Renderer = zrow::scanline_for!(
     Q16_16,
     zrow_scenes::DEMO_MEASURED_EACH[0].with_margin(5),
-    uncued
+    display
 );
 
 static RENDERER: ConstStaticCell<Renderer> = ConstStaticCell::new(Renderer::new());
