@@ -155,7 +155,10 @@ pub use zbuffer::ZBuffer;
 /// renderer whose sink takes colours only, as a display's does, drawing flat-shaded: a sink
 /// that reads depth, or the perspective-correct cue (whose factor comes from the depth row), is
 /// then [`Error::Unsupported`], and rows of heavy overlap are swept like the others instead of
-/// being resolved against a depth row ([`scanline::ram_bytes_display`]).
+/// being resolved against a depth row. Its polygon records keep their corners in 12 bits
+/// ([`scanline::Slot12`]: 2 bytes less a polygon), so its vertex capacity is at most 4,096
+/// (a larger one does not build; name the type with `u16` slots instead).
+/// [`scanline::ram_bytes_display`] is its size.
 ///
 /// `scanline_for!(N, REQ, gouraud)` draws smooth shading
 /// ([`Shading::Gouraud`](shading::Shading::Gouraud)): uncued, with an intensity plane per
@@ -174,7 +177,7 @@ macro_rules! scanline_for {
         $crate::scanline_for!(
             @ $n,
             $req,
-            u16,
+            $crate::scanline::Slot12,
             $crate::scanline::Uncued,
             $crate::scanline::Flat,
             $crate::scanline::NoDepth

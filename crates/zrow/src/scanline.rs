@@ -59,21 +59,28 @@ use embedded_graphics_core::pixelcolor::raw::{RawData, RawU16};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use heapless::Vec;
 
-/// The integer type of a slot number in the vertex buffer: `u16` (the default, up to 65,536
-/// slots: two bytes a corner) or `u32` (host-sized scenes). Sealed.
+/// How a polygon record keeps its corners' slot numbers in the vertex buffer: `u16` (the
+/// default, up to 65,536 slots: two bytes a corner, 12-byte records), [`Slot12`] (up to 4,096
+/// slots packed in 12 bits: 10-byte records) or `u32` (host-sized scenes). Sealed.
 pub trait Slot: Copy + core::fmt::Debug + 'static + sealed::Sealed {
     /// The largest vertex capacity the type can address.
     const MAX_SLOTS: usize;
-    /// From a slot number below [`Slot::MAX_SLOTS`].
-    fn from_slot(v: u32) -> Self;
-    /// The slot number.
-    fn slot(self) -> usize;
+    /// Up to [`INDEXED_CORNERS`] slot numbers, packed.
+    #[doc(hidden)]
+    type Corners: Copy + core::fmt::Debug;
+    /// Packs slot numbers, each below [`Slot::MAX_SLOTS`].
+    #[doc(hidden)]
+    fn pack(c: [u32; INDEXED_CORNERS]) -> Self::Corners;
+    /// Corner `k`'s slot number (`k` below [`INDEXED_CORNERS`]).
+    #[doc(hidden)]
+    fn corner(c: &Self::Corners, k: usize) -> usize;
 }
 
 mod sealed {
     pub trait Sealed {}
     impl Sealed for u16 {}
     impl Sealed for u32 {}
+    impl Sealed for super::Slot12 {}
     impl<N, const K: usize> Sealed for [super::EdgeCue<N>; K] {}
     impl Sealed for super::Uncued {}
     impl<N, const W: usize> Sealed for super::Depths<N, W> {}
@@ -84,25 +91,52 @@ mod sealed {
 
 impl Slot for u16 {
     const MAX_SLOTS: usize = 1 << 16;
+    type Corners = [u16; INDEXED_CORNERS];
     #[inline]
-    fn from_slot(v: u32) -> Self {
-        v as u16
+    fn pack(c: [u32; INDEXED_CORNERS]) -> Self::Corners {
+        c.map(|v| v as u16)
     }
     #[inline]
-    fn slot(self) -> usize {
-        self as usize
+    fn corner(c: &Self::Corners, k: usize) -> usize {
+        c[k] as usize
     }
 }
 
 impl Slot for u32 {
     const MAX_SLOTS: usize = u32::MAX as usize;
+    type Corners = [u32; INDEXED_CORNERS];
     #[inline]
-    fn from_slot(v: u32) -> Self {
-        v
+    fn pack(c: [u32; INDEXED_CORNERS]) -> Self::Corners {
+        c
     }
     #[inline]
-    fn slot(self) -> usize {
-        self as usize
+    fn corner(c: &Self::Corners, k: usize) -> usize {
+        c[k] as usize
+    }
+}
+
+/// Slot numbers of 12 bits ([`Slot`]): up to 4,096 vertex slots, a polygon record's four
+/// corners in 6 bytes instead of 8 (a record of 10 bytes). Each of three 16-bit words holds
+/// a corner in its low 12 bits and a third of the fourth corner, which only polygons of four
+/// corners have, in its high 4: reading one of a triangle's corners is a load and a mask.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Slot12;
+
+impl Slot for Slot12 {
+    const MAX_SLOTS: usize = 1 << 12;
+    type Corners = [u16; 3];
+    #[inline]
+    fn pack(c: [u32; INDEXED_CORNERS]) -> Self::Corners {
+        const { assert!(INDEXED_CORNERS == 4) };
+        let word = |k: usize| (c[k] & 0xfff) as u16 | ((c[3] >> (4 * k) & 0xf) as u16) << 12;
+        [word(0), word(1), word(2)]
+    }
+    #[inline]
+    fn corner(c: &Self::Corners, k: usize) -> usize {
+        match c.get(k) {
+            Some(&w) => (w & 0xfff) as usize,
+            None => (c[0] >> 12 | (c[1] >> 12) << 4 | (c[2] >> 12) << 8) as usize,
+        }
     }
 }
 
@@ -112,10 +146,10 @@ impl Slot for u32 {
 /// active list, and, for a polygon of more than three corners, activating it and walking its
 /// left side on).
 #[derive(Clone, Copy, Debug)]
-struct Polygon<S> {
+struct Polygon<S: Slot> {
     /// Up to [`INDEXED_CORNERS`] corners as slots of the vertex buffer, from the top one;
-    /// more are a run of consecutive slots from `corners[0]`.
-    corners: [S; INDEXED_CORNERS],
+    /// more are a run of consecutive slots from the first.
+    corners: S::Corners,
     color: Rgb565,
     /// First row (bits 5.., below [`MAX_VIEWPORT`] = 2^11), clockwise on the display (bit 4:
     /// its right side runs forward from the top vertex), corners − 3 (bits 0..4: 3 to
@@ -123,7 +157,7 @@ struct Polygon<S> {
     packed: u16,
 }
 
-impl<S> Polygon<S> {
+impl<S: Slot> Polygon<S> {
     /// `packed` of a polygon: `len` in 3..=[`MAX_POLYGON_VERTICES`], `first_row` in
     /// 0..[`MAX_VIEWPORT`] (the caller checks both).
     const fn pack(first_row: i16, clockwise: bool, len: usize) -> u16 {
@@ -151,7 +185,7 @@ impl<S> Polygon<S> {
 
 /// A polygon's corners in order, read from the vertex buffer.
 #[derive(Clone, Copy)]
-struct Ring<'a, N, S> {
+struct Ring<'a, N, S: Slot> {
     vertices: &'a [RasterVertex<N>],
     polygon: &'a Polygon<S>,
 }
@@ -249,9 +283,9 @@ impl<N: Copy, S: Slot> Ring<'_, N, S> {
     fn get(&self, k: usize) -> &RasterVertex<N> {
         let c = &self.polygon.corners;
         let slot = if self.len() <= INDEXED_CORNERS {
-            c[k].slot()
+            S::corner(c, k)
         } else {
-            c[0].slot() + k
+            S::corner(c, 0) + k
         };
         &self.vertices[slot]
     }
@@ -640,7 +674,7 @@ impl<
         const {
             assert!(
                 V <= S::MAX_SLOTS,
-                "vertex capacity beyond the slot type: use u32 slots"
+                "vertex capacity beyond the slot type: use wider slots (u16, u32)"
             );
             assert!(P < 1 << 16, "polygon capacity must be below 65536");
             assert!(A < 1 << 16, "active capacity must be below 65536");
@@ -767,7 +801,7 @@ impl<
             let out_of_range = || poly.corner_error();
             let at = |k: usize| &poly.vertices[poly.corners[k] as usize];
             // The buffer has at most S::MAX_SLOTS slots.
-            let slot = |k: usize| S::from_slot(poly.corners[k]);
+            let slot = |k: usize| poly.corners[k];
             let (o, corners) = if let [a, b, c] = *poly.corners {
                 let v = |i: u32| poly.vertices.get(i as usize);
                 let (Some(a), Some(b), Some(c)) = (v(a), v(b), v(c)) else {
@@ -777,13 +811,12 @@ impl<
                     return Ok(());
                 };
                 // Recorded from its top-left corner (the same ring).
-                let zero = S::from_slot(0);
                 let corners = match top {
-                    0 => [slot(0), slot(1), slot(2), zero],
-                    1 => [slot(1), slot(2), slot(0), zero],
-                    _ => [slot(2), slot(0), slot(1), zero],
+                    0 => [slot(0), slot(1), slot(2), 0],
+                    1 => [slot(1), slot(2), slot(0), 0],
+                    _ => [slot(2), slot(0), slot(1), 0],
                 };
-                (o, corners)
+                (o, S::pack(corners))
             } else {
                 if n > MAX_POLYGON_VERTICES {
                     // More than clipping makes: a scene of its own sent it (and the table
@@ -800,11 +833,9 @@ impl<
                     top_first(poly.corners, at)
                 } else {
                     // A run of consecutive slots: only its first is kept.
-                    let mut c = [S::from_slot(0); INDEXED_CORNERS];
-                    c[0] = slot(0);
-                    c
+                    [slot(0), 0, 0, 0]
                 };
-                (o, corners)
+                (o, S::pack(corners))
             };
             polys += 1;
             // In the frame's buffer, and a polygon of more than INDEXED_CORNERS corners a run
@@ -2036,7 +2067,7 @@ const FPU: bool = !cfg!(all(target_arch = "arm", not(target_abi = "eabihf")));
 
 /// What computing a depth plane on demand needs: the vertex buffer, the polygon table, the
 /// sub-pixel bits, the current row.
-struct Planes<'a, N, S> {
+struct Planes<'a, N, S: Slot> {
     vertices: &'a [RasterVertex<N>],
     polygons: &'a [Polygon<S>],
     s: u32,
@@ -2087,9 +2118,9 @@ fn count_of(v: u16) -> Rgb565 {
 fn last_row_of<N: Copy, S: Slot>(ring: &Ring<'_, N, S>, cfg: &Config) -> i32 {
     let bottom = if ring.len() <= INDEXED_CORNERS {
         // Up to four corners as slots.
-        let c = &ring.polygon.corners[..ring.len()];
-        c.iter().fold(i32::MIN, |m, s| {
-            m.max(ring.vertices.get(s.slot()).map_or(m, |v| v.y))
+        let c = &ring.polygon.corners;
+        (0..ring.len()).fold(i32::MIN, |m, k| {
+            m.max(ring.vertices.get(S::corner(c, k)).map_or(m, |v| v.y))
         })
     } else {
         (0..ring.len()).fold(i32::MIN, |m, k| m.max(ring.get(k).y))
@@ -2126,23 +2157,21 @@ fn top_index<'a, N: 'a>(n: usize, v: impl Fn(usize) -> &'a RasterVertex<N>) -> u
 /// A polygon's indexed corners turned to start at its top-left vertex (the same ring, so the
 /// same winding): activation then starts both sides at corner 0.
 #[inline]
-fn top_first<'a, S: Slot, N: 'a>(
+fn top_first<'a, N: 'a>(
     slots: &[u32],
     at: impl Fn(usize) -> &'a RasterVertex<N>,
-) -> [S; INDEXED_CORNERS] {
+) -> [u32; INDEXED_CORNERS] {
     let n = slots.len();
     let top = top_index(n, at);
-    // The buffer has at most S::MAX_SLOTS slots.
-    let c = |k: usize| S::from_slot(slots[k]);
-    let zero = S::from_slot(0);
+    let c = |k: usize| slots[k];
     if let [_, _, _] = slots {
         return match top {
-            0 => [c(0), c(1), c(2), zero],
-            1 => [c(1), c(2), c(0), zero],
-            _ => [c(2), c(0), c(1), zero],
+            0 => [c(0), c(1), c(2), 0],
+            1 => [c(1), c(2), c(0), 0],
+            _ => [c(2), c(0), c(1), 0],
         };
     }
-    let mut corners = [zero; INDEXED_CORNERS];
+    let mut corners = [0; INDEXED_CORNERS];
     for (k, corner) in corners.iter_mut().take(n).enumerate() {
         *corner = c(if top + k >= n { top + k - n } else { top + k });
     }
@@ -2255,12 +2284,18 @@ pub fn ram_bytes_uncued<N: Scalar>(req: &Requirements) -> usize {
         + req.width as usize * (size_of::<N>() + size_of::<Rgb565>())
 }
 
-/// [`ram_bytes_uncued`] for a renderer that keeps no depth row either (`Scanline<N, W, V, P,
-/// A, u16, Uncued, Flat, NoDepth>`, `scanline_for!(N, REQ, display)`): a row's width of
-/// depths and the hierarchical depth less.
+/// [`ram_bytes_uncued`] for a renderer that keeps no depth row either and packs its slot
+/// numbers in 12 bits (`Scanline<N, W, V, P, A, Slot12, Uncued, Flat, NoDepth>`,
+/// `scanline_for!(N, REQ, display)`): a row's width of depths, the hierarchical depth and 2
+/// bytes a polygon less.
 pub fn ram_bytes_display<N: Scalar>(req: &Requirements) -> usize {
     use core::mem::size_of;
-    ram_bytes_uncued::<N>(req) - size_of::<Depths<N, 0>>() - req.width as usize * size_of::<N>()
+    size_of::<Scanline<N, 0, 0, 0, 0, Slot12, Uncued, Flat, NoDepth>>()
+        + req.vertices as usize * size_of::<RasterVertex<N>>()
+        + req.polygons as usize * (size_of::<Polygon<Slot12>>() + size_of::<u16>())
+        + req.active_polygons as usize
+            * (size_of::<Active<N>>() + size_of::<u16>() + size_of::<u32>())
+        + req.width as usize * size_of::<Rgb565>()
 }
 
 /// [`ram_bytes`] for a smooth-shading renderer (`Scanline<N, W, V, P, A, u16, Uncued,
@@ -2304,6 +2339,32 @@ mod tests {
         }
     }
 
+    /// 12-bit slots give back every corner packed, the fourth included, in 10-byte records.
+    #[test]
+    fn slot12_packs_four_corners() {
+        assert_eq!(core::mem::size_of::<Polygon<Slot12>>(), 10);
+        assert_eq!(core::mem::size_of::<Polygon<u16>>(), 12);
+        let mut seed = 0x2545_f491u32;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 17;
+            seed ^= seed << 5;
+            seed % 4096
+        };
+        for _ in 0..10_000 {
+            let c = [next(), next(), next(), next()];
+            let packed = Slot12::pack(c);
+            for (k, &want) in c.iter().enumerate() {
+                assert_eq!(Slot12::corner(&packed, k), want as usize, "{c:?}");
+            }
+        }
+        let edge = [4095, 0, 4095, 4095];
+        let packed = Slot12::pack(edge);
+        for (k, &want) in edge.iter().enumerate() {
+            assert_eq!(Slot12::corner(&packed, k), want as usize);
+        }
+    }
+
     /// The active entry's size, as its doc says: a field added or a layout that pads shows
     /// here, and in every frame's RAM.
     #[test]
@@ -2335,7 +2396,7 @@ mod tests {
             );
             let (formula, size) = (
                 ram_bytes_display::<N>(&req),
-                Scanline::<N, W, V, P, A, u16, Uncued, Flat, NoDepth>::RAM_BYTES,
+                Scanline::<N, W, V, P, A, Slot12, Uncued, Flat, NoDepth>::RAM_BYTES,
             );
             assert!(
                 formula.abs_diff(size) <= 32,
@@ -2345,6 +2406,7 @@ mod tests {
         }
         check::<Q16_16, 240, 500, 454, 65>();
         check::<f32, 240, 1200, 400, 297>();
+        check::<Q16_16, 240, 4096, 2000, 300>();
         check::<Q24_8, 64, 7, 3, 1>();
         check::<Q16_16, 1, 0, 0, 0>();
     }

@@ -1,18 +1,22 @@
-//! A scan-line renderer without a depth row (`NoDepth`, `scanline_for!(N, REQ, display)`): a
-//! row's width of depths and the hierarchical depth less, the same colours bit for bit for a
-//! sink that takes colours only — rows of heavy overlap included, which it sweeps instead of
-//! resolving against the depth row — and a typed error, before any row, for a sink that reads
-//! depth or a frame with the perspective-correct cue.
+//! A scan-line renderer without a depth row (`NoDepth`) and with 12-bit slots (`Slot12`), as
+//! `scanline_for!(N, REQ, display)` builds it: a row's width of depths, the hierarchical depth
+//! and 2 bytes a polygon less, the same colours bit for bit for a sink that takes colours only
+//! — rows of heavy overlap included, which it sweeps instead of resolving against the depth
+//! row — and a typed error, before any row, for a sink that reads depth or a frame with the
+//! perspective-correct cue.
 
 mod common;
 use common::Capture;
 use zrow::pixelcolor::Rgb565;
-use zrow::scanline::{ram_bytes_display, ram_bytes_uncued, Flat, NoDepth, Uncued};
+use zrow::scanline::{ram_bytes_display, ram_bytes_uncued, Flat, NoDepth, Slot12, Uncued};
 use zrow::shading::Interpolation;
 use zrow::{requirements, Error, RenderError, Row, RowSink, Scalar, Scanline, Q16_16};
 
 type Plain<N> = Scanline<N, 240, 8192, 4096, 1024, u16, Uncued>;
-type Display<N> = Scanline<N, 240, 8192, 4096, 1024, u16, Uncued, Flat, NoDepth>;
+/// As `scanline_for!(N, REQ, display)` builds it (12-bit slots: 4,096 vertices at most).
+type Display<N> = Scanline<N, 240, 4096, 4096, 1024, Slot12, Uncued, Flat, NoDepth>;
+/// Without a depth row, with 16-bit slots (for foley2500's 7,500 vertices).
+type DisplayWide<N> = Scanline<N, 240, 8192, 4096, 1024, u16, Uncued, Flat, NoDepth>;
 
 /// A frame's colours, as a display takes them (no depth).
 struct Colours(Vec<Rgb565>);
@@ -33,15 +37,20 @@ impl<N: Scalar> RowSink<N> for Colours {
 #[test]
 fn display_is_smaller_by_the_depth_row() {
     assert_eq!(
-        Plain::<Q16_16>::RAM_BYTES - Display::<Q16_16>::RAM_BYTES,
+        Plain::<Q16_16>::RAM_BYTES - DisplayWide::<Q16_16>::RAM_BYTES,
         240 * 4 + 16 * 4
+    );
+    // 12-bit slots: 2 bytes less a polygon.
+    assert_eq!(
+        DisplayWide::<Q16_16>::RAM_BYTES - Display::<Q16_16>::RAM_BYTES,
+        4096 * 12 + 4096 * 2
     );
     let req = zrow_scenes::with_scene::<Q16_16, _>("mesh1k", 0.3, |s, c, _| requirements(s, c))
         .unwrap()
         .unwrap();
     assert_eq!(
         ram_bytes_uncued::<Q16_16>(&req) - ram_bytes_display::<Q16_16>(&req),
-        240 * 4 + 16 * 4
+        240 * 4 + 16 * 4 + 2 * req.polygons as usize
     );
     type Exact = zrow::scanline_for!(Q16_16, zrow_scenes::DEMO_MEASURED, display);
     let formula = ram_bytes_display::<Q16_16>(&zrow_scenes::DEMO_MEASURED);
@@ -49,9 +58,9 @@ fn display_is_smaller_by_the_depth_row() {
 }
 
 /// Both renderers' colours for scene `name` in format `N`.
-fn both<N: zrow_scenes::Format>(
+fn both<N: zrow_scenes::Format, D: zrow::Renderer<N>>(
     plain: &mut Plain<N>,
-    display: &mut Display<N>,
+    display: &mut D,
     name: &str,
 ) -> (Vec<Rgb565>, Vec<Rgb565>) {
     zrow_scenes::with_scene::<N, _>(name, 0.3, |s, c, _| {
@@ -68,14 +77,25 @@ fn both<N: zrow_scenes::Format>(
 #[test]
 fn display_draws_the_same_colours_heavy_rows_included() {
     fn check<N: zrow_scenes::Format>() {
-        let (mut plain, mut display) = (Box::new(Plain::<N>::new()), Box::new(Display::<N>::new()));
+        let mut plain = Box::new(Plain::<N>::new());
+        let (mut display, mut wide) = (
+            Box::new(Display::<N>::new()),
+            Box::new(DisplayWide::<N>::new()),
+        );
         // random400 and foley2500 have rows of heavy overlap (the renderer with a depth row
-        // resolves them against it).
-        for name in zrow_scenes::NAMES.iter().chain(&zrow_scenes::FOLEY) {
-            let (a, b) = both::<N>(&mut plain, &mut display, name);
+        // resolves them against it); the cube has quads (a fourth corner, packed).
+        let check = |name: &str, a: Vec<Rgb565>, b: Vec<Rgb565>| {
             assert_eq!(a.len(), 240 * 240, "{name}");
             assert!(a.iter().any(|&c| c != a[0]), "{name}: nothing drawn");
             assert!(a == b, "{name} ({}): the colours differ", N::NAME);
+        };
+        for name in zrow_scenes::NAMES {
+            let (a, b) = both::<N, _>(&mut plain, &mut *display, name);
+            check(name, a, b);
+        }
+        for name in zrow_scenes::FOLEY {
+            let (a, b) = both::<N, _>(&mut plain, &mut *wide, name);
+            check(name, a, b);
         }
     }
     check::<Q16_16>();

@@ -550,11 +550,13 @@ impl<N: Scalar> Method<N> {
 }
 
 /// Every method that must draw any opaque scene as the exact reference does, at capacities
-/// for frames up to 64×64 and 256 polygons: scan-line, z-buffer, tiled 16-bit z-buffer (exact
-/// beyond its resolution), depth-sort, Warnock, BSP, A-buffer.
+/// for frames up to 64×64 and 256 polygons: scan-line (with 16-bit slots, then 12-bit ones),
+/// z-buffer, tiled 16-bit z-buffer (exact beyond its resolution), depth-sort, Warnock, BSP,
+/// A-buffer.
 pub fn every_method<N: Scalar>() -> Vec<Method<N>> {
     vec![
         Method::new::<Scanline<N, 64, 1024, 256, 256>>(),
+        Method::new::<Scanline<N, 64, 1024, 256, 256, zrow::scanline::Slot12>>(),
         Method::new::<zrow::ZBuffer<N, 64, 64>>(),
         Method::tiled::<64, 8, 256, 1024>(),
         Method::new::<zrow::depthsort::DepthSort<N, 64, 256, 1024, 4096>>(),
