@@ -63,7 +63,7 @@ type Standard<N> = Scanline<N, 240, 3072, 1024, 512>;
 
 /// The renderer of the standard scenes without heavy overlap (cube, mesh1k: not [`HEAVY`]):
 /// as a display's renderer is built, without the affine cue's per-edge state or a depth row,
-/// with 1024 vertices and polygons and 128 active polygons (room for the stack: the MPS2's
+/// with 12-bit slots, 1024 vertices and polygons and 128 active polygons (room for the stack: the MPS2's
 /// 4 MB of RAM are nearly all statics) (`zrow::scanline_for!(N, REQ, display)`, as the
 /// firmware builds it): their frames are flat and the hash sink takes colours only.
 type Display<N> = Scanline<
@@ -72,7 +72,7 @@ type Display<N> = Scanline<
     1024,
     1024,
     128,
-    u16,
+    zrow::scanline::Slot12,
     zrow::scanline::Uncued,
     zrow::scanline::Flat,
     zrow::scanline::NoDepth,
