@@ -472,8 +472,10 @@ impl<N> ShadeStore<N> for Flat {
 /// their spans meet. The row is kept for what does need it: a sink that reads depth
 /// ([`RowSink::WANTS_DEPTH`]), the perspective-correct depth cue (its factor is taken from
 /// the row's depths), and rows of heavy overlap, which the default renderer resolves pixel by
-/// pixel against it (spans covering more than twice the row). Without it the first two are [`Error::Unsupported`]
-/// and a heavy row is swept like any other — the same pixels, at the sweep's cost.
+/// pixel against it (spans covering more than twice the row). Without it the first two are
+/// [`Error::Unsupported`] and a heavy row is swept like any other — the same pixels, at the
+/// sweep's cost (random400, 400 large triangles overlapping: 35.2 M instructions on the
+/// emulated Cortex-M4 instead of 13.5 M, Q16.16).
 pub trait DepthRow<N>: sealed::Sealed {
     /// The store with nothing set (all zero: a `static` renderer stays in `.bss`).
     const EMPTY: Self;
@@ -507,8 +509,9 @@ impl<N: Scalar, const W: usize> DepthRow<N> for Depths<N, W> {
     }
 }
 
-/// A scan-line renderer without a depth row ([`DepthRow`]): `Scanline<N, W, V, P, A, u16,
-/// Uncued, Flat, NoDepth>`, or `scanline_for!(N, REQ, display)`.
+/// A scan-line renderer without a depth row ([`DepthRow`]): `Scanline<N, W, V, P, A, S, C, G,
+/// NoDepth>`, as `scanline_for!(N, REQ, display)` builds it (with [`Slot12`], [`Uncued`] and
+/// [`Flat`]).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct NoDepth;
 
