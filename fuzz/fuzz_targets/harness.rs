@@ -29,17 +29,19 @@ impl Bytes<'_> {
     }
 }
 
-/// Checks the row contract.
-struct Sink {
+/// Checks the row contract; reads depth if `DEPTH` (else, as a display's sink, colours only).
+struct Sink<const DEPTH: bool> {
     height: u16,
     next: u16,
 }
-impl<N> RowSink<N> for Sink {
+impl<N, const DEPTH: bool> RowSink<N> for Sink<DEPTH> {
     type Error = ();
+    const WANTS_DEPTH: bool = DEPTH;
     fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), ()> {
         assert_eq!(row.y, self.next, "rows top to bottom, each once");
         assert!(row.y < self.height, "no row past the frame");
-        assert_eq!(row.color.len(), row.depth.len());
+        let depths = if DEPTH { row.color.len() } else { 0 };
+        assert_eq!(row.depth.len(), depths);
         self.next += 1;
         Ok(())
     }
@@ -58,7 +60,17 @@ fn run<N: Scalar, R: Renderer<N>>(
     cfg: &Config,
     reach: &mut Reach,
 ) {
-    let mut sink = Sink {
+    run_into::<N, R, true>(r, scene, cfg, reach)
+}
+
+/// [`run`] into a sink that reads depth if `DEPTH`.
+fn run_into<N: Scalar, R: Renderer<N>, const DEPTH: bool>(
+    r: &mut R,
+    scene: &impl Scene<N>,
+    cfg: &Config,
+    reach: &mut Reach,
+) {
+    let mut sink = Sink::<DEPTH> {
         height: cfg.height,
         next: 0,
     };
@@ -107,6 +119,19 @@ fn every_method<N: Scalar>(scene: &impl Scene<N>, cfg: &Config) -> Reach {
     type Smooth<N> =
         Scanline<N, 64, 64, 16, 16, u16, zrow::scanline::Uncued, [IntensityPlane<N>; 16]>;
     run(&mut Smooth::<N>::new(), scene, cfg, r);
+    // A display's renderer (no depth row, 12-bit slots) into a sink that takes colours only.
+    type Display<N> = Scanline<
+        N,
+        64,
+        64,
+        16,
+        16,
+        zrow::scanline::Slot12,
+        zrow::scanline::Uncued,
+        zrow::scanline::Flat,
+        zrow::scanline::NoDepth,
+    >;
+    run_into::<N, _, false>(&mut Display::<N>::new(), scene, cfg, r);
     if cfg.shading.is_facets() {
         lines(scene, cfg);
     }
