@@ -117,6 +117,10 @@ torus() { awk -v s="$1" '$1 == "method=scanline" && $2 == "scene=" s && $3 == "f
 expect "emulated torus, smooth and flat" "$(torus mesh1k-smooth) M instructions smooth against $(torus mesh1k) M flat"
 # ... and as a hidden-line drawing ("Hidden-line drawings").
 expect "emulated torus, hidden lines and flat" "costs $(torus mesh1k-lines) M instructions against $(torus mesh1k) M flat-shaded"
+# ... and the display renderer's RAM for it at exact requirements ("Methods").
+torus_ram() { awk '$1 == "method=scanline" && $2 == "scene=mesh1k" && $3 == "format=q16.16" {
+  split($6, f, "="); print f[2] }' "$bench"; }
+expect "emulated torus, display renderer RAM" "torus then needs $(thousands "$(torus_ram)") bytes at exact"
 
 # The methods table's scan-line RAM, as docs/methods/foley.md has it.
 ram_cols="$(awk -F'|' '$2 ~ /^ scanline $/ && $5 ~ /KiB/ { gsub(/ |KiB/, "", $5); gsub(/ |KiB/, "", $8); print $5 " / " $8 " KiB"; exit }' docs/methods/foley.md)"
