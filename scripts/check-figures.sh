@@ -86,9 +86,12 @@ done
 # The converted torus's scan-line RAM (the README's convert command).
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
-torus="$(cargo run --release -q -p zrow-sim -- convert --model assets/models/torus.off \
-  --out "$tmp/torus.rs" --size 240x240 --distance 3 2>&1 | sed -nE 's/.*RAM: scan-line ([0-9]+) bytes.*/\1/p')"
+report="$(cargo run --release -q -p zrow-sim -- convert --model assets/models/torus.off \
+  --out "$tmp/torus.rs" --size 240x240 --distance 3 2>&1)"
+torus="$(echo "$report" | sed -nE 's/.*RAM: scan-line ([0-9]+) bytes.*/\1/p')"
+display="$(echo "$report" | sed -nE 's/.*RAM: scan-line [0-9]+ bytes \(([0-9]+) as a display.*/\1/p')"
 expect "converted torus RAM" "torus at 240×240: $(thousands "$torus") bytes"
+expect "converted torus RAM, display renderer" "$(thousands "$display") as a display's renderer"
 
 # The converted icosphere's flash as a triangle list, and what its faces would take as a list
 # of zrow::Face (12 bytes each instead of the 2 of its one colour).

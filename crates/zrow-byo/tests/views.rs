@@ -1,6 +1,7 @@
 //! The included meshes under orientations the converter never sampled (a seed it does not
 //! use): the renderer sized by the converter never runs out of room, and draws what a
-//! generously sized one draws; the cube, a closed convex solid, is drawn exactly by culling
+//! generously sized one draws, and so does its display renderer (`Display`: no depth row,
+//! 12-bit slots), in less RAM; the cube, a closed convex solid, is drawn exactly by culling
 //! alone at the converter's capacities; the icosphere, emitted as a triangle list, draws what
 //! the same triangles as a list of faces draw; converted with compact positions, it draws
 //! what the same positions in Q16.16 draw, within 2^-15 of the Q16.16 conversion's.
@@ -14,6 +15,9 @@ use zrow_model::camera::{light, View};
 use zrow_model::convert::random_rotations;
 
 type Big = Scanline<Q16_16, 240, 8192, 2048, 512>;
+
+// The display renderer the converter emits is the smaller one (checked as the test builds).
+const _: () = assert!(torus::Display::RAM_BYTES < torus::Renderer::RAM_BYTES);
 
 /// Renders `mesh` turned by `rot` with `R`, as the converter's views are set up.
 fn draw<R: Renderer<Q16_16>, I: MeshIndex>(
@@ -46,9 +50,11 @@ fn draw<R: Renderer<Q16_16>, I: MeshIndex>(
 #[test]
 fn the_converted_capacities_hold_under_unsampled_views() {
     let (mut small, mut big) = (Box::new(torus::Renderer::new()), Box::new(Big::new()));
+    let mut display = Box::new(torus::Display::new());
     for rot in random_rotations(300, 0x05ee_db10) {
         let got = draw(&mut *small, &torus::MESH, &rot).expect("capacities hold");
         assert!(got == draw(&mut *big, &torus::MESH, &rot).unwrap());
+        assert!(got == draw(&mut *display, &torus::MESH, &rot).expect("display capacities hold"));
     }
     println!(
         "torus: converter capacities P={} E={} A={}, renderer RAM {} B (a 240x240 frame + 16-bit z-buffer: {} B)",

@@ -72,7 +72,9 @@
 //! within the crease angle; a vertex that needs several normals is copied, before the
 //! capacities are measured, so `VERTEX_SLOTS` counts the copies) — the consts `WIDTH`, `HEIGHT`, `POLYGONS`,
 //! `EDGES`, `VERTEX_SLOTS`, `ACTIVE`, and `pub type Renderer = zrow::Scanline<N, WIDTH, VERTEX_SLOTS, POLYGONS,
-//! ACTIVE>`, every public item documented, the whole report in a header comment. Colours are built with
+//! ACTIVE>` — and, when `VERTEX_SLOTS` is at most 4,096, `pub type Display`, the same capacities
+//! as a display's renderer is built (`zrow::scanline_for!(N, REQ, display)`: no depth row, no
+//! affine cue state, 12-bit slots; for a sink that takes colours only) — every public item documented, the whole report in a header comment. Colours are built with
 //! `zrow::Rgb565::new` (zrow re-exports the colour type), so the including crate needs zrow
 //! alone.
 
@@ -320,6 +322,9 @@ pub struct Report {
     pub depth: DepthRange,
     /// [`zrow::scanline::ram_bytes`] at the capacities.
     pub scanline_ram: usize,
+    /// [`zrow::scanline::ram_bytes_display`] at the capacities, when they allow the display's
+    /// renderer (at most 4,096 vertex slots: [`zrow::scanline::Slot12`]).
+    pub display_ram: Option<usize>,
     /// Frame buffer (Rgb565) plus a 16-bit z-buffer: `W·H·4`.
     pub frame_z16_ram: usize,
     /// Frame buffer plus a 32-bit z-buffer: `W·H·6`.
@@ -428,10 +433,14 @@ impl fmt::Display for Report {
                 ""
             }
         )?;
+        let display = match self.display_ram {
+            Some(ram) => format!(" ({ram} as a display's: `Display`)"),
+            None => String::new(),
+        };
         writeln!(
             f,
-            "  RAM: scan-line {} bytes; frame buffer + 16-bit z-buffer {} bytes, + 32-bit \
-             z-buffer {} bytes",
+            "  RAM: scan-line {} bytes{display}; frame buffer + 16-bit z-buffer {} bytes, + \
+             32-bit z-buffer {} bytes",
             self.scanline_ram, self.frame_z16_ram, self.frame_z32_ram
         )?;
         match self.cull_only_ram {
@@ -911,6 +920,12 @@ pub fn convert_model_with(
         Format::Q16_16 => zrow::scanline::ram_bytes::<Q16_16>(&capacities),
         Format::F32 => zrow::scanline::ram_bytes::<f32>(&capacities),
     };
+    let display_ram = (capacities.vertices as usize
+        <= <zrow::scanline::Slot12 as zrow::scanline::Slot>::MAX_SLOTS)
+        .then(|| match opts.format {
+            Format::Q16_16 => zrow::scanline::ram_bytes_display::<Q16_16>(&capacities),
+            Format::F32 => zrow::scanline::ram_bytes_display::<f32>(&capacities),
+        });
     let flash = FlashBytes {
         vertices: if opts.compact { 6 } else { 12 } * vertices.len(),
         normals: if opts.compact { 6 } else { 12 } * (normals.len() + vertex_normals.len()),
@@ -940,6 +955,7 @@ pub fn convert_model_with(
         capacities,
         depth,
         scanline_ram,
+        display_ram,
         frame_z16_ram: w * h * 4,
         frame_z32_ram: w * h * 6,
         flash,
@@ -1730,6 +1746,18 @@ fn emit(c: &Converted, name: &str) -> String {
         cap.active_polygons,
         r.scanline_ram
     );
+    if let Some(ram) = r.display_ram {
+        let _ = writeln!(
+            s,
+            "\n/// The scan-line renderer sized for this model as a display's is built\n\
+             /// (`zrow::scanline_for!(N, REQ, display)`): no depth row, no affine depth cue state,\n\
+             /// corners in 12 bits; for a sink that takes colours only, flat shaded ({ram} bytes of\n\
+             /// RAM).\n\
+             pub type Display = zrow::Scanline<\n    {n_type},\n    WIDTH,\n    VERTEX_SLOTS,\n    \
+             POLYGONS,\n    ACTIVE,\n    zrow::scanline::Slot12,\n    zrow::scanline::Uncued,\n    \
+             zrow::scanline::Flat,\n    zrow::scanline::NoDepth,\n>;"
+        );
+    }
     let _ = match r.cull_only_ram {
         Some(ram) => writeln!(
             s,
