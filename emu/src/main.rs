@@ -66,17 +66,7 @@ type Standard<N> = Scanline<N, 240, 3072, 1024, 512>;
 /// with 12-bit slots, 1024 vertices and polygons and 128 active polygons (room for the stack: the MPS2's
 /// 4 MB of RAM are nearly all statics) (`zrow::scanline_for!(N, REQ, display)`, as the
 /// firmware builds it): their frames are flat and the hash sink takes colours only.
-type Display<N> = Scanline<
-    N,
-    240,
-    1024,
-    1024,
-    128,
-    zrow::scanline::Slot12,
-    zrow::scanline::Uncued,
-    zrow::scanline::Flat,
-    zrow::scanline::NoDepth,
->;
+type Display<N> = zrow::scanline::Display<N, 240, 1024, 1024, 128>;
 
 /// How often the start marker ran (printed at the end: the optimiser cannot drop the counts,
 /// and the two markers' bodies differ, so LLVM cannot merge them into one address).

@@ -120,18 +120,12 @@ fn every_method<N: Scalar>(scene: &impl Scene<N>, cfg: &Config) -> Reach {
         Scanline<N, 64, 64, 16, 16, u16, zrow::scanline::Uncued, [IntensityPlane<N>; 16]>;
     run(&mut Smooth::<N>::new(), scene, cfg, r);
     // A display's renderer (no depth row, 12-bit slots) into a sink that takes colours only.
-    type Display<N> = Scanline<
-        N,
-        64,
-        64,
-        16,
-        16,
-        zrow::scanline::Slot12,
-        zrow::scanline::Uncued,
-        zrow::scanline::Flat,
-        zrow::scanline::NoDepth,
-    >;
-    run_into::<N, _, false>(&mut Display::<N>::new(), scene, cfg, r);
+    run_into::<N, _, false>(
+        &mut zrow::scanline::Display::<N, 64, 64, 16, 16>::new(),
+        scene,
+        cfg,
+        r,
+    );
     if cfg.shading.is_facets() {
         lines(scene, cfg);
     }

@@ -1753,9 +1753,7 @@ fn emit(c: &Converted, name: &str) -> String {
              /// (`zrow::scanline_for!(N, REQ, display)`): no depth row, no affine depth cue state,\n\
              /// corners in 12 bits; for a sink that takes colours only, flat shaded ({ram} bytes of\n\
              /// RAM).\n\
-             pub type Display = zrow::Scanline<\n    {n_type},\n    WIDTH,\n    VERTEX_SLOTS,\n    \
-             POLYGONS,\n    ACTIVE,\n    zrow::scanline::Slot12,\n    zrow::scanline::Uncued,\n    \
-             zrow::scanline::Flat,\n    zrow::scanline::NoDepth,\n>;"
+             pub type Display = zrow::scanline::Display<{n_type}, WIDTH, VERTEX_SLOTS, POLYGONS, ACTIVE>;"
         );
     }
     let _ = match r.cull_only_ram {

@@ -174,14 +174,13 @@ macro_rules! scanline_for {
         $crate::scanline_for!(@ $n, $req, u16, $crate::scanline::Uncued)
     };
     ($n:ty, $req:expr, display) => {
-        $crate::scanline_for!(
-            @ $n,
-            $req,
-            $crate::scanline::Slot12,
-            $crate::scanline::Uncued,
-            $crate::scanline::Flat,
-            $crate::scanline::NoDepth
-        )
+        $crate::scanline::Display<
+            $n,
+            { $req.width as usize },
+            { $req.vertices as usize },
+            { $req.polygons as usize },
+            { $req.active_polygons as usize },
+        >
     };
     ($n:ty, $req:expr, gouraud) => {
         $crate::scanline_for!(

@@ -510,8 +510,8 @@ impl<N: Scalar, const W: usize> DepthRow<N> for Depths<N, W> {
 }
 
 /// A scan-line renderer without a depth row ([`DepthRow`]): `Scanline<N, W, V, P, A, S, C, G,
-/// NoDepth>`, as `scanline_for!(N, REQ, display)` builds it (with [`Slot12`], [`Uncued`] and
-/// [`Flat`]).
+/// NoDepth>`, as [`Display`] (`scanline_for!(N, REQ, display)`) builds it, with [`Slot12`],
+/// [`Uncued`] and [`Flat`].
 #[derive(Clone, Copy, Debug, Default)]
 pub struct NoDepth;
 
@@ -523,6 +523,13 @@ impl<N> DepthRow<N> for NoDepth {
         (&mut [], &mut [])
     }
 }
+
+/// The scan-line renderer as a display's is built: for a sink that takes colours only, flat
+/// shaded — no depth row ([`NoDepth`]), no affine cue state ([`Uncued`]), corners in 12 bits
+/// ([`Slot12`]: at most 4,096 vertex slots). `scanline_for!(N, REQ, display)` sizes it from a
+/// [`Requirements`]; [`ram_bytes_display`] is its size.
+pub type Display<N, const W: usize, const V: usize, const P: usize, const A: usize> =
+    Scanline<N, W, V, P, A, Slot12, Uncued, Flat, NoDepth>;
 
 /// The scan-line renderer.
 ///
@@ -2293,7 +2300,7 @@ pub fn ram_bytes_uncued<N: Scalar>(req: &Requirements) -> usize {
 /// bytes a polygon less.
 pub fn ram_bytes_display<N: Scalar>(req: &Requirements) -> usize {
     use core::mem::size_of;
-    size_of::<Scanline<N, 0, 0, 0, 0, Slot12, Uncued, Flat, NoDepth>>()
+    size_of::<Display<N, 0, 0, 0, 0>>()
         + req.vertices as usize * size_of::<RasterVertex<N>>()
         + req.polygons as usize * (size_of::<Polygon<Slot12>>() + size_of::<u16>())
         + req.active_polygons as usize
@@ -2399,7 +2406,7 @@ mod tests {
             );
             let (formula, size) = (
                 ram_bytes_display::<N>(&req),
-                Scanline::<N, W, V, P, A, Slot12, Uncued, Flat, NoDepth>::RAM_BYTES,
+                Display::<N, W, V, P, A>::RAM_BYTES,
             );
             assert!(
                 formula.abs_diff(size) <= 32,

@@ -8,13 +8,13 @@
 mod common;
 use common::Capture;
 use zrow::pixelcolor::Rgb565;
-use zrow::scanline::{ram_bytes_display, ram_bytes_uncued, Flat, NoDepth, Slot12, Uncued};
+use zrow::scanline::{ram_bytes_display, ram_bytes_uncued, Flat, NoDepth, Uncued};
 use zrow::shading::Interpolation;
 use zrow::{requirements, Error, RenderError, Row, RowSink, Scalar, Scanline, Q16_16};
 
 type Plain<N> = Scanline<N, 240, 8192, 4096, 1024, u16, Uncued>;
 /// As `scanline_for!(N, REQ, display)` builds it (12-bit slots: 4,096 vertices at most).
-type Display<N> = Scanline<N, 240, 4096, 4096, 1024, Slot12, Uncued, Flat, NoDepth>;
+type Display<N> = zrow::scanline::Display<N, 240, 4096, 4096, 1024>;
 /// Without a depth row, with 16-bit slots (for foley2500's 7,500 vertices).
 type DisplayWide<N> = Scanline<N, 240, 8192, 4096, 1024, u16, Uncued, Flat, NoDepth>;
 
