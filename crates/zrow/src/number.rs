@@ -179,7 +179,8 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     }
     /// What a transform row keeps ready for many points ([`crate::math::Affine::prepare`]):
     /// in f32 the Veltkamp halves of its three linear entries, split once per transform
-    /// instead of once per point; the exact formats need nothing (`()`, no bytes).
+    /// instead of once per point; fixed point whether its linear entries are small enough to sum
+    /// without an overflow check (a `bool`).
     type RowHalves: Copy + core::fmt::Debug;
     /// [`Scalar::RowHalves`] of `row`.
     fn row_halves(row: &[Self; 4]) -> Self::RowHalves;
@@ -443,6 +444,13 @@ fn f32_from_compact_bits(v: i16, shift: u32) -> f32 {
 
 fn sat_i32(v: i128) -> i32 {
     v.clamp(i32::MIN as i128, i32::MAX as i128) as i32
+}
+
+/// [`Scalar::affine_row_as`] out of line: a fixed-point transform row with a linear entry of
+/// 2^30 or more, rare, kept off the inlined path of [`Scalar::affine_row_halved`].
+#[inline(never)]
+fn affine_row_general<N: Scalar>(row: &[N; 4], p: [N; 3], plain: bool) -> Option<N> {
+    N::affine_row_as(row, p, plain)
 }
 
 /// `v` as an `i32`, saturated: one comparison of the high word in the common case.
@@ -768,19 +776,35 @@ macro_rules! impl_fixed {
                 };
                 Some((x, y, z))
             }
-            type RowHalves = ();
+            /// Whether the row's linear entries are all below 2^30 in magnitude, so that the
+            /// three products and the translation sum in `i64` with no overflow check: decided
+            /// once per transform instead of once per point.
+            type RowHalves = bool;
             #[inline]
-            fn row_halves(_: &[Self; 4]) {}
-            // Out of line: inlined three times a vertex, it cost a Q16.16 firmware 1.2 KB of
-            // flash for 1 % fewer instructions.
-            #[inline(never)]
+            fn row_halves(row: &[Self; 4]) -> bool {
+                let small = |v: Self| (v.to_bits().wrapping_add(1 << 30) as u32) < 1 << 31;
+                small(row[0]) && small(row[1]) && small(row[2])
+            }
+            // Inline where the row is small (a multiply and two multiply-accumulates, a
+            // rounding shift); the general sum out of line: inlined whole three times a
+            // vertex, it cost a Q16.16 firmware 1.2 KB of flash for 1 % fewer instructions.
+            #[inline]
             fn affine_row_halved(
                 row: &[Self; 4],
-                _: &(),
+                small: &bool,
                 p: [Self; 3],
                 plain: bool,
             ) -> Option<Self> {
-                Self::affine_row_as(row, p, plain)
+                if *small {
+                    let f = $t::FRAC_NBITS;
+                    let prod = |a: Self, b: Self| a.to_bits() as i64 * b.to_bits() as i64;
+                    // `affine_row`'s small rows' sum and rounding, the half added first:
+                    // `(v + 2^(f−1)) >> f` is `((v >> (f − 1)) + 1) >> 1`.
+                    let t = ((row[3].to_bits() as i64) << f) + (1 << (f - 1));
+                    let v = prod(row[0], p[0]) + prod(row[1], p[1]) + prod(row[2], p[2]) + t;
+                    return i32::try_from(v >> f).ok().map($t::from_bits);
+                }
+                affine_row_general(row, p, plain)
             }
             #[inline]
             fn affine_row(row: &[Self; 4], p: [Self; 3]) -> Option<Self> {

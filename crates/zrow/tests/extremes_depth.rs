@@ -605,6 +605,49 @@ fn prepared_transforms_beyond_the_splitting_range() {
     }
 }
 
+/// Fixed point decides once per transform whether a row's linear entries are small enough
+/// (below 2^30 in raw bits) to sum without an overflow check: rows on either side of that
+/// line, and a row mixing both, give the bits of the unprepared sum, in range and beyond.
+fn prepared_rows_either_side_of_the_fast_sum<N: Scalar>() {
+    // 2^30 raw bits in the format's units (2^14 in Q16.16, 2^22 in Q24.8; f32 has no such
+    // line, and takes the same entries).
+    let line = (1u64 << 30) as f32 * fixed_lsb::<N>().unwrap_or(1.0 / 65536.0) as f32;
+    let max = max_f32::<N>();
+    let entries = [
+        0.5,
+        -3.25,
+        line * 0.999,
+        -line * 0.999,
+        line,
+        max * 0.95,
+        -max * 0.95,
+    ];
+    let coords = [1.0, -100.0, line * 0.999, max * 0.95, -max * 0.95];
+    let n = |v: f32| N::from_f32(v).unwrap();
+    // Every row of these entries against every point of these coordinates (the first row
+    // varied, the other two kept: one sum per call is what the rule decides).
+    for &e0 in &entries {
+        for &e1 in &entries {
+            for &e2 in &entries {
+                let mut a = Affine::<N>::identity();
+                a.m[0] = [n(e0), n(e1), n(e2), n(-7.5)];
+                for &x in &coords {
+                    for &y in &coords {
+                        for &z in &coords {
+                            same_when_prepared(&a, Vec3::new(n(x), n(y), n(z)));
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn prepared_rows_on_both_sides_of_the_fast_sum() {
+    for_formats!(prepared_rows_either_side_of_the_fast_sum);
+}
+
 // 19. Transforms near the format's limits: within 3 units of the last place per output
 // wherever the partial sums fit (what three products and three sums each rounded once could
 // lose), saturated with the right sign, never wrapped, beyond. The catalogue's rule, half a

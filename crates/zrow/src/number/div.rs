@@ -162,19 +162,25 @@ pub(crate) fn div_round_small_divisor(n: i64, d: u32) -> Option<i32> {
         return None;
     }
     let un = n.unsigned_abs();
-    // Bits below the first digit: a multiple of 8, so that the first digit has at most 32.
-    let extra = (32 - ((un >> 32) as u32).leading_zeros() + 7) & !7;
-    let top = (un >> extra) as u32;
-    let (mut q, mut r) = (top / d, top % d);
-    let mut left = extra;
-    while left > 0 {
-        if q > 1 << 23 {
-            return None; // the quotient passes 2^31
+    // Most numerators (a projection's x and y) fit 32 bits: one hardware division.
+    let (q, r) = if un >> 32 == 0 {
+        (un as u32 / d, un as u32 % d)
+    } else {
+        // Bits below the first digit: a multiple of 8, so that the first digit has at most 32.
+        let extra = (32 - ((un >> 32) as u32).leading_zeros() + 7) & !7;
+        let top = (un >> extra) as u32;
+        let (mut q, mut r) = (top / d, top % d);
+        let mut left = extra;
+        while left > 0 {
+            if q > 1 << 23 {
+                return None; // the quotient passes 2^31
+            }
+            left -= 8;
+            let t = r << 8 | (un >> left) as u32 & 0xff; // r < d < 2^24
+            (q, r) = ((q << 8) | (t / d), t % d);
         }
-        left -= 8;
-        let t = r << 8 | (un >> left) as u32 & 0xff; // r < d < 2^24
-        (q, r) = ((q << 8) | (t / d), t % d);
-    }
+        (q, r)
+    };
     let q = q.checked_add((r >= d - r) as u32)?;
     // Up to 2^31 − 1, or 2^31 for a negative quotient.
     let most = (1u32 << 31) - (n >= 0) as u32;
