@@ -534,7 +534,19 @@ pub(crate) fn fill_run(run: &mut [Rgb565], c: Rgb565) {
     for ch in &mut chunks {
         ch.copy_from_slice(&[c; 8]);
     }
-    for p in chunks.into_remainder() {
+    // The rest (a mesh's spans are mostly shorter than eight) by four, two and one: three
+    // tests, not a loop.
+    let rest = chunks.into_remainder();
+    let n = rest.len();
+    let (four, rest) = rest.split_at_mut(n & 4);
+    if let Ok(four) = <&mut [Rgb565; 4]>::try_from(four) {
+        *four = [c; 4];
+    }
+    let (two, rest) = rest.split_at_mut(n & 2);
+    if let Ok(two) = <&mut [Rgb565; 2]>::try_from(two) {
+        *two = [c; 2];
+    }
+    if let Some(p) = rest.first_mut() {
         *p = c;
     }
 }
@@ -743,6 +755,26 @@ mod tests {
             seed ^= seed >> 7;
             seed ^= seed << 17;
             (seed % (2 * m as u64 + 1)) as i64 - m
+        }
+    }
+
+    #[test]
+    fn fill_run_fills_exactly_its_run() {
+        // Every length to past two chunks, at every offset in a chunk: the run and nothing else.
+        let (c, other) = (Rgb565::new(31, 0, 7), Rgb565::new(1, 2, 3));
+        for len in 0..20 {
+            for at in 0..8 {
+                let mut row = [other; 32];
+                fill_run(&mut row[at..at + len], c);
+                for (x, p) in row.iter().enumerate() {
+                    let want = if (at..at + len).contains(&x) {
+                        c
+                    } else {
+                        other
+                    };
+                    assert_eq!(*p, want, "length {len} from {at}, pixel {x}");
+                }
+            }
         }
     }
 

@@ -1311,6 +1311,9 @@ impl<
 
     /// The sweep from column `cur` where span `first` (already taken from the keys, up to
     /// `k`) meets others, until nothing is open; returns where it stopped and the next key.
+    /// Out of line: a mesh's rows rarely come here, and the loop of spans alone keeps its
+    /// registers.
+    #[inline(never)]
     fn overlap(
         &mut self,
         mut cur: i32,
