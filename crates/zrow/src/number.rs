@@ -511,6 +511,23 @@ fn face_normal_i16(a: [i16; 3], b: [i16; 3], c: [i16; 3], f: u32) -> Option<[i32
     let d = |p: &[i16; 3], i: usize| p[i] as i32 - a[i] as i32;
     let e1 = [d(&b, 0), d(&b, 1), d(&b, 2)];
     let e2 = [d(&c, 0), d(&c, 1), d(&c, 2)];
+    // Edges in −2^15..2^15 (nearly every model's): each product within 2^30, each component
+    // within 2^31 − 2^15, all in 32 bits; the same bits as the 64-bit products below.
+    let small = |v: i32| (v.wrapping_add(1 << 15) as u32) < 1 << 16;
+    if e1.iter().chain(&e2).all(|&v| small(v)) {
+        let n = [
+            e1[1] * e2[2] - e1[2] * e2[1],
+            e1[2] * e2[0] - e1[0] * e2[2],
+            e1[0] * e2[1] - e1[1] * e2[0],
+        ];
+        let m = n[0].unsigned_abs() | n[1].unsigned_abs() | n[2].unsigned_abs();
+        if m == 0 {
+            return None;
+        }
+        let shift = (32 - m.leading_zeros()) as i32 - f as i32;
+        let out = |v: i32| if shift >= 0 { v >> shift } else { v << -shift };
+        return Some([out(n[0]), out(n[1]), out(n[2])]);
+    }
     let p = |u: i32, v: i32| u as i64 * v as i64;
     let n = [
         p(e1[1], e2[2]) - p(e1[2], e2[1]),

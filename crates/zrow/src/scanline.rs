@@ -1095,25 +1095,6 @@ impl<
     /// edges found down each side from its top vertex.
     #[inline(never)]
     fn activate(&mut self, i: u16, y: i32, cfg: &Config, want_depth: bool) {
-        let p = &self.polygons[i as usize];
-        let ring = Ring {
-            vertices: &self.vertices,
-            polygon: p,
-        };
-        // Clockwise on the display: forward from the top runs down the right side.
-        let walks = if ring.len() == 3 {
-            triangle_walks(&ring, p.clockwise(), y, cfg)
-        } else {
-            let top = top_of(&ring) as u8;
-            (
-                walk_from(ring, top, !p.clockwise(), y, cfg),
-                walk_from(ring, top, p.clockwise(), y, cfg),
-            )
-        };
-        let (Some(left), Some(right)) = walks else {
-            return; // cannot happen: the outline covers row y
-        };
-        self.edges += 2;
         let slot = if let Some(a) = self.active.get((self.free as usize).wrapping_sub(1)) {
             let slot = self.free - 1;
             self.free = a.poly; // popped
@@ -1125,16 +1106,32 @@ impl<
             return; // cannot happen: `max_active` checked the capacity for every row
         };
         let cue = self.affine_cue();
-        let a = &mut self.active[slot as usize];
-        // A triangle's first two edges: one of them ends at its lowest corner, its last row.
-        let last_row = if ring.len() == 3 {
-            left.last.max(right.last)
-        } else {
-            last_row_of(&ring, cfg) as i16
+        let p = &self.polygons[i as usize];
+        let ring = Ring {
+            vertices: &self.vertices,
+            polygon: p,
         };
-        a.end[RIGHT] = 0; // not planed
-        a.set_left(left, left.last == last_row);
-        a.set_right(right);
+        let a = &mut self.active[slot as usize];
+        // Its two edges, written in place. Clockwise on the display: forward from the top runs
+        // down the right side.
+        let found = if ring.len() == 3 {
+            triangle_sides(a, &ring, p.clockwise(), y, cfg)
+        } else {
+            let top = top_of(&ring) as u8;
+            let left = walk_from(ring, top, !p.clockwise(), y, cfg);
+            let right = walk_from(ring, top, p.clockwise(), y, cfg);
+            if let (Some(left), Some(right)) = (left, right) {
+                a.end[RIGHT] = 0; // not planed
+                a.set_left(left, left.last as i32 == last_row_of(&ring, cfg));
+                a.set_right(right);
+            }
+            left.is_some() && right.is_some()
+        };
+        if !found {
+            (a.poly, self.free) = (self.free, slot + 1); // cannot happen: the outline covers row y
+            return;
+        }
+        self.edges += 2;
         a.poly = i;
         a.color = p.color;
         if want_depth || cue.is_some() {
@@ -1147,6 +1144,7 @@ impl<
             planes.ensure(a);
         }
         if let (Some(c), Some(e)) = (cue, self.cues.at_mut(slot as usize)) {
+            let (left, right) = (a.walk(LEFT), a.walk(RIGHT));
             e.f[0..2].copy_from_slice(&edge_cue(&c, a, &left, y));
             e.f[2..4].copy_from_slice(&edge_cue(&c, a, &right, y));
             e.last = [left.last, right.last];
@@ -1768,29 +1766,50 @@ fn walk_from<N: Copy, S: Slot>(
     None
 }
 
-/// The left and right edges of a triangle at row `y`, its first: from the top vertex down
-/// each side, the second edge of a side where its first ends above `y` (what [`walk_from`]
-/// does, without walking a ring).
-fn triangle_walks<N: Copy, S: Slot>(
+/// A triangle's left and right edges at row `y`, its first, written into `a`: each side's
+/// walk from the top vertex, to its neighbour, or on to the third corner where that first edge
+/// ends above `y` (what [`walk_from`] finds, without walking a ring), the left one flagged if
+/// it ends on the triangle's last row, and no plane. `false` if a side has no edge there
+/// (cannot happen: the outline covers row `y`).
+#[inline]
+fn triangle_sides<N: Scalar, S: Slot>(
+    a: &mut Active<N>,
     ring: &Ring<'_, N, S>,
     clockwise: bool,
     y: i32,
     cfg: &Config,
-) -> (Option<Walk>, Option<Walk>) {
-    let v = [*ring.get(0), *ring.get(1), *ring.get(2)];
+) -> bool {
     // Recorded from its top vertex ([`top_first`]).
-    let (t, f, b) = (0, 1, 2);
-    // The edge from vertex `p` down to `q`, if it covers row `y`.
-    let edge = |p: usize, q: usize| edge_walk(&v[p], &v[q], q, y, cfg);
-    // Down one side: top to its neighbour, then on to the third vertex.
-    let side =
-        |n: usize, m: usize| edge(t, n).or_else(|| (v[m].y > v[n].y).then(|| edge(n, m)).flatten());
-    let (forward, backward) = (side(f, b), side(b, f));
-    if clockwise {
-        (backward, forward)
-    } else {
-        (forward, backward)
-    }
+    let v = [ring.get(0), ring.get(1), ring.get(2)];
+    let (s, h, height) = (cfg.subpixel_bits as u32, cfg.half(), cfg.height as i32);
+    // The last sample row of an edge ending at corner `k` (each worked out once).
+    let last = |k: usize| row_at_or_below(v[k].y, s, h).min(height) - 1;
+    let (l1, l2) = (last(1), last(2));
+    // Down one side, through corner `n` then `m`: the edge covering row `y` (from, to, its
+    // last row), as `edge_walk` takes it.
+    let side = |n: usize, ln: i32, m: usize, lm: i32| {
+        if v[n].y > v[0].y && ln >= y {
+            Some((0, n, ln))
+        } else if v[m].y > v[n].y && lm >= y {
+            Some((n, m, lm))
+        } else {
+            None
+        }
+    };
+    let (Some(forward), Some(backward)) = (side(1, l1, 2, l2), side(2, l2, 1, l1)) else {
+        return false;
+    };
+    let (left, right) = match clockwise {
+        true => (backward, forward),
+        false => (forward, backward),
+    };
+    let dda = |(p, q, _): (usize, usize, i32)| Dda::between(v[p].x, v[p].y, v[q].x, v[q].y, y, s);
+    let end = |(_, q, last): (usize, usize, i32)| (last as u16) << END_ROW | q as u16;
+    // Its first two edges: one of them ends at its lowest corner, its last row.
+    let lowest = left.2.max(right.2);
+    a.dda = [dda(left), dda(right)];
+    a.end = [end(left) | flag(left.2 == lowest, LAST_EDGE), end(right)];
+    true
 }
 
 /// The next edge down one side of an active polygon, from where its current edge ended, at
