@@ -593,7 +593,9 @@ pub struct Scanline<
     edges: u32,
     /// The row being drawn and what drawing it needs from the configuration.
     row: RowState,
-    /// Pixels the active spans cover in the current row, summed (overlaps counted again).
+    /// Pixels the active spans cover in the current row, summed (overlaps counted again): what
+    /// decides a heavy row. Only with a depth row (without one no row is resolved by depth,
+    /// and it stays 0).
     cover: i32,
 }
 
@@ -1149,7 +1151,9 @@ impl<
             e.f[2..4].copy_from_slice(&edge_cue(&c, a, &right, y));
             e.last = [left.last, right.last];
         }
-        self.cover += span_cover(a.xl(), a.xr(), cfg.width as i32);
+        if D::KEEPS {
+            self.cover += span_cover(a.xl(), a.xr(), cfg.width as i32);
+        }
         let _ = self.sorted.push(key(a.xl(), slot)); // at most A slots are occupied
     }
 
@@ -1221,7 +1225,9 @@ impl<
             } else if a.planed() {
                 a.z_row = a.plane_at(y, 0, y + 1);
             }
-            cover += span_cover(a.xl(), a.xr(), w);
+            if D::KEEPS {
+                cover += span_cover(a.xl(), a.xr(), w);
+            }
             if let Some(k) = keys.get_mut(kept) {
                 *k = key(a.xl(), slot); // kept <= i
             }
