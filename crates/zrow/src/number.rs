@@ -788,6 +788,13 @@ macro_rules! impl_fixed {
                 let x = q(self.to_bits() as i64 * kx as i64)?;
                 let y = q(y.to_bits() as i64 * ky as i64)?;
                 let z = match k {
+                    // (Below 2^24, the same quotient without 64-bit shifts: the numerator's
+                    // low bits are zeros.)
+                    Some(k) if d < 1 << 24 => $t::from_bits(div::div_round_shifted(
+                        k.to_bits(),
+                        $t::FRAC_NBITS,
+                        d as u32,
+                    )?),
                     Some(k) => $t::from_bits(q((k.to_bits() as i64) << $t::FRAC_NBITS)?),
                     None => Self::ZERO,
                 };

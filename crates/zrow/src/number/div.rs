@@ -181,10 +181,38 @@ pub(crate) fn div_round_small_divisor(n: i64, d: u32) -> Option<i32> {
         }
         (q, r)
     };
+    rounded(q, r, d, n < 0)
+}
+
+/// `n · 2^shift / d` rounded to nearest, ties away from zero: [`div_round_small_divisor`] of
+/// that numerator, for `shift` a multiple of 8 (a fixed-point format's fractional bits), its
+/// digits taken from `n` and then zeros with no 64-bit shift: one hardware division for `n`
+/// and one per 8 bits of `shift`. The same result; `None` where that is.
+#[inline]
+pub(crate) fn div_round_shifted(n: i32, shift: u32, d: u32) -> Option<i32> {
+    if d == 0 || d >= 1 << 24 || shift % 8 != 0 {
+        return div_round_small_divisor((n as i64) << shift.min(32), d);
+    }
+    let un = n.unsigned_abs();
+    let (mut q, mut r) = (un / d, un % d);
+    for _ in 0..shift / 8 {
+        if q > 1 << 23 {
+            return None; // the quotient passes 2^31
+        }
+        let t = r << 8; // r < d < 2^24
+        (q, r) = ((q << 8) | (t / d), t % d);
+    }
+    rounded(q, r, d, n < 0)
+}
+
+/// Quotient `q` and remainder `r` of a magnitude by `d`, rounded to nearest (ties away from
+/// zero) and signed: `None` if that does not fit an `i32`.
+#[inline]
+fn rounded(q: u32, r: u32, d: u32, negative: bool) -> Option<i32> {
     let q = q.checked_add((r >= d - r) as u32)?;
     // Up to 2^31 − 1, or 2^31 for a negative quotient.
-    let most = (1u32 << 31) - (n >= 0) as u32;
-    (q <= most).then(|| match n < 0 {
+    let most = (1u32 << 31) - !negative as u32;
+    (q <= most).then(|| match negative {
         true => (q as i32).wrapping_neg(),
         false => q as i32,
     })
@@ -316,6 +344,17 @@ mod tests {
             }
         }
         assert!(taken > 100_000, "{taken}");
+        // A numerator shifted by a format's fractional bits: the same as unshifted.
+        for k in 0..200_000u32 {
+            let n = (rng(&mut seed) as i32) >> (rng(&mut seed) % 32);
+            let d = ((rng(&mut seed) as u32) >> (rng(&mut seed) % 32)).max(1);
+            let shift = [8, 16, 0, 24][(k % 4) as usize];
+            let want = div_round_small_divisor((n as i64) << shift, d);
+            assert_eq!(div_round_shifted(n, shift, d), want, "{n} << {shift} / {d}");
+        }
+        assert_eq!(div_round_shifted(i32::MIN, 16, 1 << 16), Some(i32::MIN));
+        assert_eq!(div_round_shifted(i32::MAX, 16, 1 << 16), Some(i32::MAX));
+        assert_eq!(div_round_shifted(1 << 15, 16, 1), None);
         assert_eq!(div_round_small_divisor(5, 2), Some(3));
         assert_eq!(div_round_small_divisor(-5, 2), Some(-3));
         assert_eq!(div_round_small_divisor(1, 0), None);
