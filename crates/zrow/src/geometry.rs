@@ -851,6 +851,8 @@ struct Lighting<N> {
     /// Light in model space, scaled by `1/√g`, when C is a scaled rotation.
     model_light: Option<Vec3<N>>,
     ambient: N,
+    /// `1 − ambient`, what the Lambert term is scaled by.
+    diffuse: N,
     math: crate::math::MathLib,
     /// 255 in the format: an intensity's level.
     levels: N,
@@ -883,6 +885,7 @@ impl<N: Scalar> Lighting<N> {
             to_view,
             model_light,
             ambient,
+            diffuse: N::ONE.sub(ambient),
             math,
             levels: N::from_f32(255.0).unwrap_or(N::ONE),
         }
@@ -908,8 +911,7 @@ impl<N: Scalar> Lighting<N> {
             }
             _ => N::ZERO,
         };
-        let a = self.ambient;
-        a.add(N::ONE.sub(a).mul(lambert))
+        self.ambient.add(self.diffuse.mul(lambert))
     }
 }
 

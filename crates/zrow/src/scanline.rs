@@ -1275,19 +1275,19 @@ impl<
             while let Some(&key) = self.sorted.get(k) {
                 k += 1;
                 let (slot, xl) = (key as u16 as usize, key_left(key).max(cur));
-                if self.active[slot].xr() > xl {
-                    next = Some((slot, xl));
+                let xr = self.active[slot].xr();
+                if xr > xl {
+                    next = Some((slot, xl, xr));
                     break;
                 }
             }
-            let Some((slot, start)) = next.filter(|&(_, start)| start < w) else {
+            let Some((slot, start, xr)) = next.filter(|&(_, start, _)| start < w) else {
                 self.paint(cur, w, None, want_depth);
                 return;
             };
             self.paint(cur, start, None, want_depth);
             cur = start;
             // Alone unless a later span opens before this one ends.
-            let xr = self.active[slot].xr();
             let mut j = k;
             let mut alone = true;
             while let Some(&key) = self.sorted.get(j) {
