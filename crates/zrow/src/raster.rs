@@ -536,18 +536,22 @@ pub(crate) fn fill_run(run: &mut [Rgb565], c: Rgb565) {
     }
     // The rest (a mesh's spans are mostly shorter than eight) by four, two and one: three
     // tests, not a loop.
-    let rest = chunks.into_remainder();
-    let n = rest.len();
-    let (four, rest) = rest.split_at_mut(n & 4);
-    if let Ok(four) = <&mut [Rgb565; 4]>::try_from(four) {
-        *four = [c; 4];
-    }
-    let (two, rest) = rest.split_at_mut(n & 2);
-    if let Ok(two) = <&mut [Rgb565; 2]>::try_from(two) {
-        *two = [c; 2];
-    }
-    if let Some(p) = rest.first_mut() {
-        *p = c;
+    let rest = match chunks.into_remainder() {
+        [a, b, d, e, rest @ ..] => {
+            (*a, *b, *d, *e) = (c, c, c, c);
+            rest
+        }
+        rest => rest,
+    };
+    let rest = match rest {
+        [a, b, rest @ ..] => {
+            (*a, *b) = (c, c);
+            rest
+        }
+        rest => rest,
+    };
+    if let [a, ..] = rest {
+        *a = c;
     }
 }
 
