@@ -801,8 +801,9 @@ macro_rules! impl_fixed {
                 Some((x, y, z))
             }
             /// Whether the row's linear entries are all below 2^30 in magnitude, so that the
-            /// three products and the translation sum in `i64` with no overflow check: decided
-            /// once per transform instead of once per point.
+            /// three products and the translation sum in `i64` with no overflow check (each
+            /// product below 2^61, the translation below 2^47): decided once per transform
+            /// instead of once per point.
             type RowHalves = bool;
             #[inline]
             fn row_halves(row: &[Self; 4]) -> bool {
@@ -822,8 +823,8 @@ macro_rules! impl_fixed {
                 if *small {
                     let f = $t::FRAC_NBITS;
                     let prod = |a: Self, b: Self| a.to_bits() as i64 * b.to_bits() as i64;
-                    // `affine_row`'s small rows' sum and rounding, the half added first:
-                    // `(v + 2^(f−1)) >> f` is `((v >> (f − 1)) + 1) >> 1`.
+                    // Rounded to nearest, the half added first: `(v + 2^(f−1)) >> f`, as
+                    // `affine_row`'s wider sums round with `((v >> (f − 1)) + 1) >> 1`.
                     let t = ((row[3].to_bits() as i64) << f) + (1 << (f - 1));
                     let v = prod(row[0], p[0]) + prod(row[1], p[1]) + prod(row[2], p[2]) + t;
                     return i32::try_from(v >> f).ok().map($t::from_bits);
@@ -832,20 +833,14 @@ macro_rules! impl_fixed {
             }
             #[inline]
             fn affine_row(row: &[Self; 4], p: [Self; 3]) -> Option<Self> {
+                if Self::row_halves(row) {
+                    return Self::affine_row_halved(row, &true, p, false);
+                }
                 let f = $t::FRAC_NBITS;
                 let prod = |a: Self, b: Self| a.to_bits() as i64 * b.to_bits() as i64;
                 // Each product is below 2^62, so three of them and the translation fit 2^64
                 // only just: add in i64 with an overflow check, in i128 when it trips.
                 let t = (row[3].to_bits() as i64) << f;
-                // Linear entries below 2^30: each product is below 2^61, so three of them
-                // and the translation (below 2^47) cannot overflow.
-                let small = |v: Self| (v.to_bits().wrapping_add(1 << 30) as u32) < 1 << 31;
-                if small(row[0]) && small(row[1]) && small(row[2]) {
-                    let v = prod(row[0], p[0]) + prod(row[1], p[1]) + prod(row[2], p[2]) + t;
-                    return i32::try_from(((v >> (f - 1)) + 1) >> 1)
-                        .ok()
-                        .map($t::from_bits);
-                }
                 let sum = prod(row[0], p[0])
                     .checked_add(prod(row[1], p[1]))
                     .and_then(|v| v.checked_add(prod(row[2], p[2])))

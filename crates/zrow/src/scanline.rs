@@ -269,10 +269,17 @@ fn flag(on: bool, bit: u16) -> u16 {
 /// [`Active::end`] of a walk, without flags.
 #[inline]
 fn end_of(w: &Walk) -> u16 {
+    end_bits(w.last as i32, w.at as usize)
+}
+
+/// [`Active::end`] of an edge whose last row is `last` and lower vertex at ring position `at`,
+/// without flags.
+#[inline]
+fn end_bits(last: i32, at: usize) -> u16 {
     const {
         assert!((MAX_VIEWPORT as u32) << END_ROW <= 1 << 16 && MAX_POLYGON_VERTICES <= 16);
     }
-    (w.last as u16) << END_ROW | w.at as u16
+    (last as u16) << END_ROW | at as u16
 }
 
 impl<N: Copy, S: Slot> Ring<'_, N, S> {
@@ -1810,7 +1817,7 @@ fn triangle_sides<N: Scalar, S: Slot>(
         false => (forward, backward),
     };
     let dda = |(p, q, _): (usize, usize, i32)| Dda::between(v[p].x, v[p].y, v[q].x, v[q].y, y, s);
-    let end = |(_, q, last): (usize, usize, i32)| (last as u16) << END_ROW | q as u16;
+    let end = |(_, q, last): (usize, usize, i32)| end_bits(last, q);
     // Its first two edges: one of them ends at its lowest corner, its last row.
     let lowest = left.2.max(right.2);
     a.dda = [dda(left), dda(right)];
