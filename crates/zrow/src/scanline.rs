@@ -1203,6 +1203,13 @@ impl<
         } = self;
         let mut kept = 0;
         let (mut cover, w) = (0, cfg.width as i32);
+        let below = NextRow {
+            polygons,
+            vertices,
+            y: y + 1,
+            cfg,
+        };
+        let (mut found, mut head) = (0, *free);
         // A plain slice: its length stays in a register (the vector's is re-read after every
         // store through `a`).
         let keys: &mut [u32] = sorted;
@@ -1215,15 +1222,15 @@ impl<
             if a.goes_below(LEFT, y) {
                 a.dda[LEFT].step();
             } else if a.end[LEFT] & LAST_EDGE != 0 {
-                (a.poly, *free) = (*free, slot + 1); // pushed (below A, so 2^16 − 1 at most)
+                (a.poly, head) = (head, slot + 1); // pushed (below A, so 2^16 − 1 at most)
                 continue;
             } else {
-                next_edge(a, LEFT, polygons, vertices, y + 1, cfg, edges);
+                found += next_edge(a, LEFT, &below) as u32;
             }
             if a.goes_below(RIGHT, y) {
                 a.dda[RIGHT].step();
             } else {
-                next_edge(a, RIGHT, polygons, vertices, y + 1, cfg, edges);
+                found += next_edge(a, RIGHT, &below) as u32;
             }
             // Exact formats step (the same bits; unplaned, a harmless wrapping add to a value
             // nobody reads, cheaper than the test); f32 evaluates, so no error accumulates.
@@ -1241,6 +1248,7 @@ impl<
             kept += 1;
         }
         sorted.truncate(kept);
+        (*edges, *free) = (*edges + found, head);
         self.cover = cover;
         if let Some(c) = self.affine_cue() {
             for &k in self.sorted.iter() {
@@ -1826,18 +1834,21 @@ fn triangle_sides<N: Scalar, S: Slot>(
 }
 
 /// The next edge down one side of an active polygon, from where its current edge ended, at
-/// row `y` (out of the row loop: it happens once or twice per polygon).
+/// row `at_row.y` (out of the row loop: it happens once or twice per polygon); whether one
+/// was found.
 #[cold]
 #[inline(never)]
 fn next_edge<N: Scalar, S: Slot>(
     a: &mut Active<N>,
     side: usize,
-    polygons: &[Polygon<S>],
-    vertices: &[RasterVertex<N>],
-    y: i32,
-    cfg: &Config,
-    edges: &mut u32,
-) {
+    at_row: &NextRow<'_, N, S>,
+) -> bool {
+    let NextRow {
+        polygons,
+        vertices,
+        y,
+        cfg,
+    } = *at_row;
     let p = &polygons[a.poly as usize];
     let ring = Ring {
         vertices,
@@ -1867,11 +1878,22 @@ fn next_edge<N: Scalar, S: Slot>(
         // Cannot happen (a polygon's left side covers every row it does): retire it.
         (None, LEFT) => {
             a.end[LEFT] |= LAST_EDGE;
-            return;
+            return false;
         }
-        (None, _) => return,
+        (None, _) => return false,
     }
-    *edges += 1;
+    true
+}
+
+/// What [`next_edge`] reads besides the active entry, in one place: the row loop that calls
+/// it keeps one address for them instead of six registers.
+#[derive(Clone, Copy)]
+struct NextRow<'a, N, S: Slot> {
+    polygons: &'a [Polygon<S>],
+    vertices: &'a [RasterVertex<N>],
+    /// The row the next edge is walked from.
+    y: i32,
+    cfg: &'a Config,
 }
 
 /// The affine cue one row down: each edge's factor stepped, or set up again where the edge
