@@ -513,8 +513,11 @@ fn face_normal_i16(a: [i16; 3], b: [i16; 3], c: [i16; 3], f: u32) -> Option<[i32
     let e2 = [d(&c, 0), d(&c, 1), d(&c, 2)];
     // Edges in −2^15..2^15 (nearly every model's): each product within 2^30, each component
     // within 2^31 − 2^15, all in 32 bits; the same bits as the 64-bit products below.
-    let small = |v: i32| (v.wrapping_add(1 << 15) as u32) < 1 << 16;
-    if e1.iter().chain(&e2).all(|&v| small(v)) {
+    // (All six tested at once: the biased edges OR-ed together stay below 2^16 only if each
+    // does.)
+    let biased = |v: i32| v.wrapping_add(1 << 15) as u32;
+    let any = biased(e1[0]) | biased(e1[1]) | biased(e1[2]);
+    if (any | biased(e2[0]) | biased(e2[1]) | biased(e2[2])) < 1 << 16 {
         let n = [
             e1[1] * e2[2] - e1[2] * e2[1],
             e1[2] * e2[0] - e1[0] * e2[2],
