@@ -825,7 +825,7 @@ impl<N: Scalar> Projector<N> {
 
     /// A clip-space point inside the view volume and the guard band, projected and snapped:
     /// `x = kx + round(kx · x / d)`, `y = ky − round(ky · y / d)`, and its depth.
-    #[inline]
+    #[inline(always)]
     fn screen(&self, v: &ClipV<N>) -> Option<RasterVertex<N>> {
         let inverse_w = self.perspective && !self.linear_w;
         let k = inverse_w.then_some(self.k_near);

@@ -164,7 +164,7 @@ pub struct Prepared<'a, N: Scalar> {
 
 impl<N: Scalar> Prepared<'_, N> {
     /// [`Affine::apply_checked_with`], the same bits.
-    #[inline]
+    #[inline(always)]
     pub fn apply_checked_with(&self, math: MathLib, p: Vec3<N>) -> Option<Vec3<N>> {
         let plain = math == MathLib::Micromath;
         let row = |k: usize| {
