@@ -2031,6 +2031,10 @@ fn sort_keys(keys: &mut [u32], old: usize) {
 /// frame of the common case.
 #[inline(never)]
 fn merge_new_keys(keys: &mut [u32], old: usize) {
+    if keys.len() <= INSERT_ALL {
+        insertion_sort(keys); // few keys: the new ones cannot travel far
+        return;
+    }
     let (head, tail) = keys.split_at_mut(old);
     insertion_sort(head);
     insertion_sort(tail);
@@ -2064,6 +2068,10 @@ fn merge_new_keys(keys: &mut [u32], old: usize) {
 
 /// Most keys [`sort_keys`] merges in (polygons entering one row); more are sorted by insertion.
 const MERGE_KEYS: usize = 16;
+
+/// Up to this many keys in all, [`merge_new_keys`] sorts them all by insertion instead: a new
+/// key then moves past at most this many, cheaper than setting up the merge.
+const INSERT_ALL: usize = 32;
 
 /// Sorts `v` ascending by insertion: cheap for the few keys that move a place or two. Out of
 /// line: [`sort_keys`] calls it from three places.
