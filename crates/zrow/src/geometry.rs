@@ -32,7 +32,7 @@
 
 use crate::error::Error;
 use crate::math::{Affine, Prepared, Vec3};
-use crate::number::Scalar;
+use crate::number::{f32_from_small_int, Scalar};
 use crate::raster::{
     canonical, signed_area2, Config, Cull, RasterVertex, GUARD_BAND, MAX_FACE_VERTICES,
     MAX_POLYGON_VERTICES,
@@ -253,20 +253,51 @@ fn same_facet<N: Scalar, I: MeshIndex>(
     if face.indices.iter().filter(|i| shared(i)).count() < 2 {
         return false;
     }
-    let point = |i: &I| {
-        let v = mesh.vertices.get(i.index())?;
-        Some([v.x.to_f32(), v.y.to_f32(), v.z.to_f32()])
+    // Compact positions whose conversion to the format is exact are taken as their integers,
+    // every length then 2^shift times the model's (and the LSB tolerance with them): f32
+    // rounds a product or sum scaled by a power of two to the same bits scaled, so every test
+    // below decides the same. Their differences (below 2^17, exact in f32) are then taken in
+    // integers and converted once: no f32 subtraction, no multiply to convert (each a library
+    // call on a core without an FPU).
+    let raw = match mesh.vertices {
+        // Exact: f32 always, fixed point for `shift` at most its fractional bits (its LSB is
+        // 2^-F, read from the constant's exponent).
+        Vectors::Compact { raw, shift }
+            if N::LSB == 0.0 || shift as u32 + (N::LSB.to_bits() >> 23) <= 127 =>
+        {
+            Some((raw, f32::from_bits((127 + shift as u32) << 23))) // 2^shift
+        }
+        _ => None,
+    };
+    // `q − p`, vertices by index.
+    let diff = |p: &I, q: &I| -> Option<[f32; 3]> {
+        match raw {
+            Some((raw, _)) => {
+                let (p, q) = (raw.get(p.index())?, raw.get(q.index())?);
+                let d = |k: usize| f32_from_small_int(q[k] as i32 - p[k] as i32);
+                Some([d(0), d(1), d(2)])
+            }
+            None => {
+                let point = |i: &I| {
+                    let v = mesh.vertices.get(i.index())?;
+                    Some([v.x.to_f32(), v.y.to_f32(), v.z.to_f32()])
+                };
+                Some(sub3(point(q)?, point(p)?))
+            }
+        }
     };
     // A face's first corner and its normal, scaled to a largest component of 1 so that no
     // product below overflows.
-    let plane = |f: &Face<'_, I>| -> Option<([f32; 3], [f32; 3])> {
-        let (a, b, c) = (
-            point(f.indices.first()?)?,
-            point(f.indices.get(1)?)?,
-            point(f.indices.get(2)?)?,
-        );
-        let n = cross3(sub3(b, a), sub3(c, a));
-        let big = n.iter().fold(0.0f32, |m, &e| m.max(e.abs()));
+    let plane = |f: &Face<'_, I>| -> Option<(I, [f32; 3])> {
+        let a = *f.indices.first()?;
+        let n = cross3(diff(&a, f.indices.get(1)?)?, diff(&a, f.indices.get(2)?)?);
+        // The largest magnitude, compared as bits (the same order for numbers; a NaN, which
+        // `f32::max` passes over, counts as 0), in integer instructions.
+        let bits = |e: f32| match e.to_bits() & 0x7fff_ffff {
+            b if b > 0x7f80_0000 => 0,
+            b => b,
+        };
+        let big = f32::from_bits(n.iter().fold(0, |m, &e| m.max(bits(e))));
         // Scaled by a power of two (exact, and three multiplies rather than three divisions
         // where f32 is soft-float): the tests below do not depend on the normal's length.
         let exp = (big.to_bits() >> 23) & 0xff;
@@ -282,10 +313,10 @@ fn same_facet<N: Scalar, I: MeshIndex>(
     if dot3(n, m) <= 0.0 {
         return false;
     }
-    let (nn, lsb) = (dot3(n, n), 4.0 * N::LSB);
+    let unit = raw.map_or(1.0, |(_, unit)| unit);
+    let (nn, lsb) = (dot3(n, n), 4.0 * N::LSB * unit);
     face.indices.iter().filter(|i| !shared(i)).all(|i| {
-        point(i).is_some_and(|p| {
-            let d = sub3(p, a);
+        diff(&a, i).is_some_and(|d| {
             let h = dot3(n, d);
             h * h <= 2.0 * nn * (lsb * lsb + 1e-6 * dot3(d, d))
         })

@@ -442,6 +442,30 @@ fn f32_from_compact_bits(v: i16, shift: u32) -> f32 {
     f32::from_bits(sign | exp << 23 | ((m << (23 - top)) & 0x7f_ffff))
 }
 
+/// `v` as an `f32` for `|v| < 2^24` (exact): the conversion where there is an FPU, else
+/// [`f32_from_int_bits`] (on a core without one, `as f32` is a library call).
+#[inline]
+pub(crate) fn f32_from_small_int(v: i32) -> f32 {
+    if cfg!(all(target_arch = "arm", not(target_abi = "eabihf"))) {
+        f32_from_int_bits(v)
+    } else {
+        v as f32
+    }
+}
+
+/// `v` as an `f32` built from its bits in integer instructions, exact for `|v| < 2^24`
+/// (larger values, which [`f32_from_small_int`]'s callers never pass, are converted).
+#[inline]
+fn f32_from_int_bits(v: i32) -> f32 {
+    let m = v.unsigned_abs();
+    if m == 0 || m >= 1 << 24 {
+        return v as f32;
+    }
+    let top = 31 - m.leading_zeros(); // 0..=23
+    let sign = if v < 0 { 1 << 31 } else { 0 };
+    f32::from_bits(sign | (127 + top) << 23 | ((m << (23 - top)) & 0x7f_ffff))
+}
+
 fn sat_i32(v: i128) -> i32 {
     v.clamp(i32::MIN as i128, i32::MAX as i128) as i32
 }
@@ -1419,6 +1443,20 @@ impl Scalar for f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The integer construction of a small integer's f32 against the conversion: every value
+    /// below 2^17 in magnitude (differences of 16-bit positions), and around 2^24.
+    #[test]
+    fn f32_int_bits_equal_the_conversion() {
+        let near_end = (1 << 24) - 3..(1 << 24) + 3;
+        for v in (-(1 << 17)..=1 << 17)
+            .chain(near_end.clone())
+            .chain(near_end.map(|v: i32| -v))
+        {
+            assert_eq!(f32_from_int_bits(v).to_bits(), (v as f32).to_bits(), "{v}");
+            assert_eq!(f32_from_small_int(v).to_bits(), (v as f32).to_bits(), "{v}");
+        }
+    }
 
     /// The integer construction of a compact f32 position against the FPU's, every input.
     #[test]

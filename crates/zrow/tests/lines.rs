@@ -348,6 +348,90 @@ fn every_method_draws_the_same_facets_f32() {
     every_method_draws_the_same_facets::<f32>();
 }
 
+/// Facets of a torus with compact (16-bit) positions are the facets of the same positions
+/// given in the format: the compact path takes the integers themselves (every length scaled
+/// by 2^shift, the tolerance with them), the other converts them first. Each vertex is
+/// jittered by a few units so that many quads sit near the coplanarity tolerance: some merge,
+/// some split, and a tolerance not scaled with the lengths would move some of them.
+fn compact_positions_draw_the_facets_of_their_values<N: Scalar>(shifts: &[u8]) {
+    let (v, t) = torus(12, 8);
+    let mut seed = 0x2545_f491u32;
+    for &shift in shifts {
+        let unit = (1u32 << shift) as f32;
+        // A few units beyond the format's tolerance (4 LSB, in units of 2^-shift).
+        let a = 3 + (8.0 * N::LSB * unit).ceil() as u32;
+        let mut jitter = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 17;
+            seed ^= seed << 5;
+            (seed % (2 * a + 1)) as i16 - a as i16
+        };
+        let raw: Vec<[i16; 3]> = v
+            .iter()
+            .map(|p| p.map(|c| (c * unit).round() as i16 + jitter()))
+            .collect();
+        let values: Vec<Vec3<N>> = (0..raw.len())
+            .map(|i| zrow::Vectors::Compact { raw: &raw, shift }.get(i).unwrap())
+            .collect();
+        let faces: Vec<Face<'_>> = t.iter().map(|t| Face::new(&t[..], Rgb565::CYAN)).collect();
+        let draw = |vertices: zrow::Vectors<'_, N>| {
+            let mesh = Mesh::new(&[], &faces).with_positions(vertices);
+            let objects = [Object {
+                mesh: &mesh,
+                transform: Affine::rotate_yx_translate(0.3, 0.9, [0.0, 0.0, 0.0]).unwrap(),
+            }];
+            let projection = Projection::perspective(50f32.to_radians(), 0.5, 10.0).unwrap();
+            let scene = ModelScene {
+                objects: &objects,
+                camera: Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0], projection)
+                    .unwrap(),
+                light: Light {
+                    direction: Vec3::from_f32([0.0, 0.0, 1.0]).unwrap(),
+                    ambient: N::ZERO,
+                },
+            };
+            let mut cfg = Config::model(S as u16, S as u16);
+            cfg.shading = Shading::Facets;
+            let mut cap = Capture::new(S, S);
+            Scanline::<N, 64, 1024, 256, 256>::new()
+                .render(&scene, &cfg, &mut cap)
+                .unwrap();
+            cap.color
+        };
+        let compact = draw(zrow::Vectors::Compact { raw: &raw, shift });
+        let converted = draw(zrow::Vectors::Format(&values));
+        let differ = compact.iter().zip(&converted).filter(|(a, b)| a != b).count();
+        assert_eq!(differ, 0, "{} shift {shift}: {differ} pixels differ", N::NAME);
+        // Both kinds of quad are on screen: merged (its second triangle drawn in its first's
+        // facet) and split (a second triangle, odd face number, drawn as its own facet).
+        let ids: std::collections::BTreeSet<u16> =
+            compact.iter().map(|c| c.into_storage()).filter(|&i| i != 0).collect();
+        let split = ids.iter().filter(|&&i| (i - 1) % 2 == 1).count();
+        assert!(
+            split > 0 && split < ids.len(),
+            "{} shift {shift}: {split} of {} facets are split quads",
+            N::NAME,
+            ids.len()
+        );
+    }
+}
+
+#[test]
+fn compact_positions_draw_the_facets_of_their_values_q16() {
+    compact_positions_draw_the_facets_of_their_values::<Q16_16>(&[10, 12, 14]);
+}
+
+#[test]
+fn compact_positions_draw_the_facets_of_their_values_q24() {
+    // (Shift 8 is converted exactly; 12 is not, and takes the converted path.)
+    compact_positions_draw_the_facets_of_their_values::<Q24_8>(&[8, 12]);
+}
+
+#[test]
+fn compact_positions_draw_the_facets_of_their_values_f32() {
+    compact_positions_draw_the_facets_of_their_values::<f32>(&[12]);
+}
+
 /// The sink, fed by a renderer row by row, draws what the whole-frame rule draws from the
 /// facets frame (rows held for their lower neighbours, the last one flushed), in the colours
 /// asked for, each row once and in order.
