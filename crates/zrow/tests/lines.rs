@@ -400,12 +400,24 @@ fn compact_positions_draw_the_facets_of_their_values<N: Scalar>(shifts: &[u8]) {
         };
         let compact = draw(zrow::Vectors::Compact { raw: &raw, shift });
         let converted = draw(zrow::Vectors::Format(&values));
-        let differ = compact.iter().zip(&converted).filter(|(a, b)| a != b).count();
-        assert_eq!(differ, 0, "{} shift {shift}: {differ} pixels differ", N::NAME);
+        let differ = compact
+            .iter()
+            .zip(&converted)
+            .filter(|(a, b)| a != b)
+            .count();
+        assert_eq!(
+            differ,
+            0,
+            "{} shift {shift}: {differ} pixels differ",
+            N::NAME
+        );
         // Both kinds of quad are on screen: merged (its second triangle drawn in its first's
         // facet) and split (a second triangle, odd face number, drawn as its own facet).
-        let ids: std::collections::BTreeSet<u16> =
-            compact.iter().map(|c| c.into_storage()).filter(|&i| i != 0).collect();
+        let ids: std::collections::BTreeSet<u16> = compact
+            .iter()
+            .map(|c| c.into_storage())
+            .filter(|&i| i != 0)
+            .collect();
         let split = ids.iter().filter(|&&i| (i - 1) % 2 == 1).count();
         assert!(
             split > 0 && split < ids.len(),
