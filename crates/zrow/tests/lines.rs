@@ -271,9 +271,17 @@ fn with_torus<N: Scalar, R>(
             alpha: 200,
         })
         .collect();
-    let mesh = Mesh::new(&vertices, &faces);
+    in_view(&Mesh::new(&vertices, &faces), cull, draw)
+}
+
+/// `mesh` tilted towards a perspective camera, drawn as facets.
+fn in_view<N: Scalar, R>(
+    mesh: &Mesh<'_, N, u16>,
+    cull: bool,
+    draw: impl FnOnce(&ModelScene<'_, N, u16>, &Config) -> R,
+) -> R {
     let objects = [Object {
-        mesh: &mesh,
+        mesh,
         transform: Affine::rotate_yx_translate(0.3, 0.9, [0.0, 0.0, 0.0]).unwrap(),
     }];
     let projection = Projection::perspective(50f32.to_radians(), 0.5, 10.0).unwrap();
@@ -376,27 +384,13 @@ fn compact_positions_draw_the_facets_of_their_values<N: Scalar>(shifts: &[u8]) {
         let faces: Vec<Face<'_>> = t.iter().map(|t| Face::new(&t[..], Rgb565::CYAN)).collect();
         let draw = |vertices: zrow::Vectors<'_, N>| {
             let mesh = Mesh::new(&[], &faces).with_positions(vertices);
-            let objects = [Object {
-                mesh: &mesh,
-                transform: Affine::rotate_yx_translate(0.3, 0.9, [0.0, 0.0, 0.0]).unwrap(),
-            }];
-            let projection = Projection::perspective(50f32.to_radians(), 0.5, 10.0).unwrap();
-            let scene = ModelScene {
-                objects: &objects,
-                camera: Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0], projection)
-                    .unwrap(),
-                light: Light {
-                    direction: Vec3::from_f32([0.0, 0.0, 1.0]).unwrap(),
-                    ambient: N::ZERO,
-                },
-            };
-            let mut cfg = Config::model(S as u16, S as u16);
-            cfg.shading = Shading::Facets;
-            let mut cap = Capture::new(S, S);
-            Scanline::<N, 64, 1024, 256, 256>::new()
-                .render(&scene, &cfg, &mut cap)
-                .unwrap();
-            cap.color
+            in_view(&mesh, true, |scene, cfg| {
+                let mut cap = Capture::new(S, S);
+                Scanline::<N, 64, 1024, 256, 256>::new()
+                    .render(scene, cfg, &mut cap)
+                    .unwrap();
+                cap.color
+            })
         };
         let compact = draw(zrow::Vectors::Compact { raw: &raw, shift });
         let converted = draw(zrow::Vectors::Format(&values));
