@@ -1886,7 +1886,7 @@ fn next_edge<N: Scalar, S: Slot>(
 }
 
 /// What [`next_edge`] reads besides the active entry, in one place: the row loop that calls
-/// it keeps one address for them instead of six registers.
+/// it keeps one address for them instead of six arguments' worth of registers.
 #[derive(Clone, Copy)]
 struct NextRow<'a, N, S: Slot> {
     polygons: &'a [Polygon<S>],
@@ -2014,7 +2014,8 @@ fn depth_at<N: Scalar>(a: &Active<N>, x: i32) -> N {
 /// [`Scanline::sort_active`]'s sort of distinct keys, ascending: the first `old` (the keys
 /// that were active on the row before, in last row's order: nearly sorted) and the rest (the
 /// polygons that entered this row, in scene order) are each sorted by insertion, then merged
-/// from the back, each earlier key moving at most once however far the new ones go.
+/// from the back, each earlier key moving at most once however far the new ones go; up to
+/// [`INSERT_ALL`] keys in all, one insertion sort does it more cheaply.
 #[inline(always)]
 fn sort_keys(keys: &mut [u32], old: usize) {
     if keys.len() < 2 {
