@@ -427,15 +427,15 @@ fn udiv_u128(n: u128, d: u128) -> u128 {
     q
 }
 
-/// `v · 2^-shift` as an `f32` built from its bits (exact: 16 significant bits fit 24), in
-/// integer instructions, for cores without an FPU.
+/// `v · 2^-shift` as an `f32` built from its bits in integer instructions, for cores without
+/// an FPU: exact for `|v| < 2^24` (24 significant bits at most) and `shift ≤ 126`.
 #[inline]
-fn f32_from_compact_bits(v: i16, shift: u32) -> f32 {
+fn f32_from_int_bits(v: i32, shift: u32) -> f32 {
     if v == 0 {
         return 0.0;
     }
-    let m = v.unsigned_abs() as u32;
-    let top = 31 - m.leading_zeros(); // 0..=15
+    let m = v.unsigned_abs();
+    let top = 31 - m.leading_zeros(); // 0..=23
                                       // shift ≤ 126: the exponent stays at least 1 (normal).
     let exp = 127 + top - shift.min(126);
     let sign = if v < 0 { 1 << 31 } else { 0 };
@@ -443,27 +443,15 @@ fn f32_from_compact_bits(v: i16, shift: u32) -> f32 {
 }
 
 /// `v` as an `f32` for `|v| < 2^24` (exact): the conversion where there is an FPU, else
-/// [`f32_from_int_bits`] (on a core without one, `as f32` is a library call).
+/// [`f32_from_int_bits`] (on a core without one, `as f32` is a library call; larger values,
+/// which no caller passes, are converted).
 #[inline]
 pub(crate) fn f32_from_small_int(v: i32) -> f32 {
-    if cfg!(all(target_arch = "arm", not(target_abi = "eabihf"))) {
-        f32_from_int_bits(v)
+    if cfg!(all(target_arch = "arm", not(target_abi = "eabihf"))) && v.unsigned_abs() < 1 << 24 {
+        f32_from_int_bits(v, 0)
     } else {
         v as f32
     }
-}
-
-/// `v` as an `f32` built from its bits in integer instructions, exact for `|v| < 2^24`
-/// (larger values, which [`f32_from_small_int`]'s callers never pass, are converted).
-#[inline]
-fn f32_from_int_bits(v: i32) -> f32 {
-    let m = v.unsigned_abs();
-    if m == 0 || m >= 1 << 24 {
-        return v as f32;
-    }
-    let top = 31 - m.leading_zeros(); // 0..=23
-    let sign = if v < 0 { 1 << 31 } else { 0 };
-    f32::from_bits(sign | (127 + top) << 23 | ((m << (23 - top)) & 0x7f_ffff))
 }
 
 fn sat_i32(v: i128) -> i32 {
@@ -1146,7 +1134,7 @@ impl Scalar for f32 {
     fn from_compact(v: i16, shift: u32) -> Self {
         if cfg!(all(target_arch = "arm", not(target_abi = "eabihf"))) {
             // No FPU (a Cortex-M3, say): conversion and multiply would be library calls.
-            f32_from_compact_bits(v, shift)
+            f32_from_int_bits(v as i32, shift)
         } else {
             v as f32 * f32::from_bits((127 - shift.min(126)) << 23)
         }
@@ -1453,7 +1441,13 @@ mod tests {
             .chain(near_end.clone())
             .chain(near_end.map(|v: i32| -v))
         {
-            assert_eq!(f32_from_int_bits(v).to_bits(), (v as f32).to_bits(), "{v}");
+            if v.unsigned_abs() < 1 << 24 {
+                assert_eq!(
+                    f32_from_int_bits(v, 0).to_bits(),
+                    (v as f32).to_bits(),
+                    "{v}"
+                );
+            }
             assert_eq!(f32_from_small_int(v).to_bits(), (v as f32).to_bits(), "{v}");
         }
     }
@@ -1465,7 +1459,7 @@ mod tests {
             for shift in [0, 1, 8, 14, 16, 30, 100, 126, 127, 200] {
                 let want = v as f32 * f32::from_bits((127 - shift.min(126)) << 23);
                 assert_eq!(
-                    f32_from_compact_bits(v, shift).to_bits(),
+                    f32_from_int_bits(v as i32, shift).to_bits(),
                     want.to_bits(),
                     "{v} {shift}"
                 );
