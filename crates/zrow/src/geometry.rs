@@ -42,6 +42,7 @@ use crate::scene::{
     ScreenScene, Vectors, VertexBuffer, INDEXED_CORNERS,
 };
 use crate::shading::Shading;
+use core::cell::Cell;
 use embedded_graphics_core::pixelcolor::raw::RawU16;
 use embedded_graphics_core::pixelcolor::Rgb565;
 use heapless::Vec;
@@ -207,22 +208,66 @@ fn intensity_plane<N: Scalar>(
 /// triangles takes 8), so that finding a face's facet is bounded whatever the mesh.
 const FACET_RUN: usize = 16;
 
-/// The colour face `k` of `mesh` is drawn in under [`Shading::Facets`]: the raw value
-/// `facet + 1`, where `facet` is the scene number of the first face of its facet (`first_no`
-/// is the scene number of the mesh's face 0): faces are followed back while each continues the
-/// one before it ([`same_facet`]), at most [`FACET_RUN`] steps. Out of line: the loops that
-/// call it draw shaded frames nearly always, and only faces that survive culling ask.
-#[inline(never)]
-fn facet_color<N: Scalar, I: MeshIndex>(mesh: &Mesh<'_, N, I>, k: usize, first_no: u32) -> Rgb565 {
-    let mut first = k;
-    while first > 0 && k - first < FACET_RUN {
-        match (mesh.faces.get(first - 1), mesh.faces.get(first)) {
-            (Some(prev), Some(face)) if same_facet(mesh, &prev, &face) => first -= 1,
-            _ => break,
+/// Where [`facet_color`] is in one mesh's faces: the scene number of the mesh's face 0, and
+/// the face asked last with its facet's first face (`usize::MAX`: none yet).
+struct FacetWalk {
+    first_no: u32,
+    last: Cell<(usize, usize)>,
+}
+
+impl FacetWalk {
+    fn new(first_no: u32) -> Self {
+        FacetWalk {
+            first_no,
+            last: Cell::new((usize::MAX, 0)),
         }
     }
+}
+
+/// How one object's faces are coloured: lit ([`Lighting`]), or, drawn as facets, numbered
+/// ([`facet_color`]).
+struct FacePaint<N> {
+    lighting: Lighting<N>,
+    facets: FacetWalk,
+}
+
+/// The colour face `k` of `mesh` is drawn in under [`Shading::Facets`]: the raw value
+/// `facet + 1`, where `facet` is the scene number of the first face of its facet: faces are
+/// followed back while each continues the one before it ([`same_facet`]), at most
+/// [`FACET_RUN`] steps. Out of line: the loops that call it draw shaded frames nearly always,
+/// and only faces that survive culling ask.
+///
+/// Faces ask in order, so where the face before asked last (`walk`), the walk back from `k`
+/// is its walk after one test: `k`'s facet is that facet (its start kept within
+/// [`FACET_RUN`] of `k`) if `k` continues face `k − 1`, else `k` itself. One test instead of
+/// the walk.
+#[inline(never)]
+fn facet_color<N: Scalar, I: MeshIndex>(
+    mesh: &Mesh<'_, N, I>,
+    k: usize,
+    walk: &FacetWalk,
+) -> Rgb565 {
+    // Whether face `j` (above 0) continues face `j − 1`.
+    let continues = |j: usize| match (mesh.faces.get(j - 1), mesh.faces.get(j)) {
+        (Some(prev), Some(face)) => same_facet(mesh, &prev, &face),
+        _ => false,
+    };
+    let first = match walk.last.get() {
+        (before, its_first) if k > 0 && before == k - 1 => match continues(k) {
+            true => its_first.max(k.saturating_sub(FACET_RUN)),
+            false => k,
+        },
+        _ => {
+            let mut first = k;
+            while first > 0 && k - first < FACET_RUN && continues(first) {
+                first -= 1;
+            }
+            first
+        }
+    };
+    walk.last.set((k, first));
     // Below 2^16: the scene's face count was checked ([`facets_fit`]).
-    Rgb565::from(RawU16::new((first_no as usize + first + 1) as u16))
+    Rgb565::from(RawU16::new((walk.first_no as usize + first + 1) as u16))
 }
 
 /// The most faces a scene drawn as facets may have: each facet's value `facet + 1` is 16 bits.
@@ -580,11 +625,12 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ScreenScene<'_, N, I> {
         // the feature (the call alone left 1.4 KB of it in the Cortex-M4 firmware's flash).
         let facets = cfg!(feature = "lines") && cfg.shading.is_facets();
         facets_fit(facets, mesh.faces.len())?;
+        let walk = FacetWalk::new(0);
         for (no, face) in mesh.faces.iter().enumerate() {
             let facet;
             let face = match facets {
                 true => {
-                    let color = facet_color(mesh, no, 0);
+                    let color = facet_color(mesh, no, &walk);
                     facet = Face {
                         color,
                         alpha: 255,
@@ -1090,6 +1136,12 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
         for obj in self.objects {
             let mv = self.camera.view.then_after(&obj.transform);
             let lighting = Lighting::for_object(&mv, light, self.light.ambient, cfg.math);
+            // Lit, or as facets numbered from this object's first face (one capture for the
+            // colour closure: a second one cost the shaded frames' faces a spill).
+            let paint = FacePaint {
+                lighting,
+                facets: FacetWalk::new(no),
+            };
             let mesh = obj.mesh;
             // Every vertex once: transformed, and, inside the view volume and the guard band,
             // projected and snapped.
@@ -1126,7 +1178,7 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
             let smooth = SMOOTH && cfg.shading.is_smooth() && !mesh.vertex_normals.is_empty();
             let level = |i: usize| {
                 let n = mesh.vertex_normals.get(i);
-                lighting.level(n.map(|n| [n.x, n.y, n.z]))
+                paint.lighting.level(n.map(|n| [n.x, n.y, n.z]))
             };
             let levels_of = |face: &Face<'_, I>| {
                 let mut levels = [N::ZERO; MAX_POLYGON_VERTICES];
@@ -1149,9 +1201,9 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
                 cfg!(feature = "lines") && facets,
                 smooth,
             ) {
-                (true, _) => facet_color(mesh, k, first_no),
+                (true, _) => facet_color(mesh, k, &paint.facets),
                 (false, true) => face.color,
-                (false, false) => lighting.color(face.color, normal(k, face)),
+                (false, false) => paint.lighting.color(face.color, normal(k, face)),
             };
             let alpha = |face: &Face<'_, I>| match cfg!(feature = "lines") && facets {
                 true => 255,

@@ -441,6 +441,72 @@ fn compact_positions_draw_the_facets_of_their_values_f32() {
 /// The sink, fed by a renderer row by row, draws what the whole-frame rule draws from the
 /// facets frame (rows held for their lower neighbours, the last one flushed), in the colours
 /// asked for, each row once and in order.
+/// A strip of 24 quads (48 triangles, each sharing an edge with the one before), flat up to
+/// column 12 and folded there: two facets of 24 faces, each longer than the 16 steps a facet
+/// is followed back. Face `k` of a run starting at face `r` is drawn as facet
+/// `max(r, k − 16)`, read across the middle row (a quad's left pixel is its first triangle,
+/// its right pixel its second), in every method, culled or not (the strip is front-facing).
+fn long_facets_are_followed_back_sixteen_faces<N: Scalar>() {
+    // Column i's top and bottom corners; depth flat, then rising past column 12.
+    let z = |i: usize| 10.0 + 3.0 * i.saturating_sub(12) as f32;
+    let mut vertices = Vec::new();
+    for i in 0..=24 {
+        let x = 4.0 + 2.0 * i as f32;
+        vertices.push(Vec3::<N>::from_f32([x, 4.0, z(i)]).unwrap());
+        vertices.push(Vec3::<N>::from_f32([x, 60.0, z(i)]).unwrap());
+    }
+    let (top, bottom) = (|i: usize| 2 * i as u16, |i: usize| 2 * i as u16 + 1);
+    let triangles: Vec<[u16; 3]> = (0..24)
+        .flat_map(|i| {
+            [
+                [top(i), bottom(i), top(i + 1)],
+                [bottom(i), bottom(i + 1), top(i + 1)],
+            ]
+        })
+        .collect();
+    let faces: Vec<Face<'_>> = triangles
+        .iter()
+        .map(|t| Face {
+            indices: &t[..],
+            color: Rgb565::WHITE,
+            alpha: 255,
+        })
+        .collect();
+    let scene = ScreenScene {
+        mesh: Mesh::new(&vertices, &faces),
+    };
+    let facet = |k: usize| {
+        let run = if k < 24 { 0 } else { 24 };
+        run.max(k.saturating_sub(16)) as u16 + 1
+    };
+    for cull in [zrow::Cull::None, zrow::Cull::Back] {
+        let mut cfg = Config::screen(S as u16, S as u16);
+        cfg.shading = Shading::Facets;
+        cfg.cull = cull;
+        for m in &mut every_method::<N>() {
+            let (cap, _, _) = m
+                .scene(&scene, &cfg)
+                .unwrap_or_else(|e| panic!("{}: {e:?}", m.name));
+            let row = &cap.color[32 * S..33 * S];
+            let drawn: Vec<u16> = row.iter().map(|c| c.into_storage()).collect();
+            for k in 0..48 {
+                let x = 4 + 2 * (k / 2) + k % 2;
+                assert_eq!(drawn[x], facet(k), "{} ({cull:?}): face {k}", m.name);
+            }
+        }
+    }
+}
+
+#[test]
+fn long_facets_are_followed_back_sixteen_faces_q16() {
+    long_facets_are_followed_back_sixteen_faces::<Q16_16>();
+}
+
+#[test]
+fn long_facets_are_followed_back_sixteen_faces_f32() {
+    long_facets_are_followed_back_sixteen_faces::<f32>();
+}
+
 #[test]
 fn streaming_sink_matches_the_whole_frame_rule() {
     let facets = with_torus::<Q16_16, _>(false, |scene, cfg| {
