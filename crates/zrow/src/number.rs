@@ -1233,7 +1233,10 @@ impl Scalar for f32 {
             e1[2] * e2[0] - e1[0] * e2[2],
             e1[0] * e2[1] - e1[1] * e2[0],
         ];
-        let m = n[0].abs().max(n[1].abs()).max(n[2].abs());
+        // `f32::max`'s result (a NaN passed over) by comparisons: on a Cortex-M4F it is a
+        // library call (`fmaxf`).
+        let max = |a: f32, b: f32| if a.is_nan() || b > a { b } else { a };
+        let m = max(max(n[0].abs(), n[1].abs()), n[2].abs());
         if m.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) || !m.is_finite() {
             return None;
         }
@@ -1946,6 +1949,45 @@ mod tests {
             let ulp = f32::from_bits(ulp + 1) as f64 - exact as f32 as f64;
             assert!((got - exact).abs() <= MAX_ERROR_ULP as f64 * ulp, "{v}");
         }
+    }
+
+    /// The f32 face normal is the cross product over its largest magnitude, that magnitude
+    /// taken as `f32::max` takes it (a NaN passed over), on ordinary, infinite, NaN and zero
+    /// corners.
+    #[test]
+    fn f32_face_normal_scales_by_f32_max() {
+        let reference = |a: [f32; 3], b: [f32; 3], c: [f32; 3]| {
+            let e1 = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+            let e2 = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+            let n = [
+                e1[1] * e2[2] - e1[2] * e2[1],
+                e1[2] * e2[0] - e1[0] * e2[2],
+                e1[0] * e2[1] - e1[1] * e2[0],
+            ];
+            let m = n[0].abs().max(n[1].abs()).max(n[2].abs());
+            (m > 0.0 && m.is_finite()).then(|| n.map(|v| v * (1.0 / m)))
+        };
+        let values = [
+            0.0,
+            -0.0,
+            1.0,
+            -2.5,
+            3.0e-20,
+            7.0e18,
+            f32::INFINITY,
+            f32::NAN,
+        ];
+        let bits = |n: Option<[f32; 3]>| n.map(|n| n.map(f32::to_bits));
+        let mut seen_nan = false;
+        for (i, &p) in values.iter().enumerate() {
+            for &q in &values[i..] {
+                let (a, b, c) = ([p, 0.5, 1.0], [1.0, q, -1.0], [2.0, -3.0, 4.0]);
+                let got = Scalar::face_normal(a, b, c);
+                seen_nan |= got.is_some_and(|n| n.iter().any(|v| v.is_nan()));
+                assert_eq!(bits(got), bits(reference(a, b, c)), "{a:?} {b:?} {c:?}");
+            }
+        }
+        assert!(seen_nan, "no case had a NaN component beside a number");
     }
 
     #[test]
