@@ -1165,6 +1165,9 @@ impl Scalar for f32 {
         let q = self / o;
         q.is_finite().then_some(q)
     }
+    // Inlined into the projection (twice a vertex): out of line, each call saved and restored
+    // an FPU register around 30 instructions of work (Cortex-M4F mesh1k −12.7 k).
+    #[inline(always)]
     fn ratio(self, k: i32, d: Self) -> Option<i32> {
         if d.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) {
             return None; // also NaN
