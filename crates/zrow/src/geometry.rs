@@ -985,7 +985,10 @@ impl<N: Scalar> Lighting<N> {
         self.intensity(normal).mul(self.levels)
     }
 
-    /// `ambient + (1 − ambient)·max(0, n̂·l̂)` for model-space normal `normal`.
+    /// `ambient + (1 − ambient)·max(0, n̂·l̂)` for model-space normal `normal`. Inlined into
+    /// its callers (a face's colour, a smooth vertex's level): one call a face fewer, and no
+    /// firmware flash more (the Cortex-M4 firmware's size unchanged).
+    #[inline(always)]
     fn intensity(&self, normal: Option<[N; 3]>) -> N {
         let lambert = match (normal, self.model_light, self.light, self.to_view) {
             (Some(n), Some(lm), _, _) => self.lambert(n, [lm.x, lm.y, lm.z]),
