@@ -32,7 +32,7 @@
 
 use crate::error::Error;
 use crate::math::{Affine, Prepared, Vec3};
-use crate::number::{f32_from_small_int, Scalar};
+use crate::number::{cross3, dot3, f32_from_small_int, sub3, Scalar};
 use crate::raster::{
     canonical, signed_area2, Config, Cull, RasterVertex, GUARD_BAND, MAX_FACE_VERTICES,
     MAX_POLYGON_VERTICES,
@@ -366,22 +366,6 @@ fn same_facet<N: Scalar, I: MeshIndex>(
             h * h <= 2.0 * nn * (lsb * lsb + 1e-6 * dot3(d, d))
         })
     })
-}
-
-fn dot3(a: [f32; 3], b: [f32; 3]) -> f32 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn sub3(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross3(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 /// 0, 1, 2, …: the corners of a polygon whose vertices are listed in order.

@@ -442,6 +442,28 @@ fn f32_from_int_bits(v: i32, shift: u32) -> f32 {
     f32::from_bits(sign | exp << 23 | ((m << (23 - top)) & 0x7f_ffff))
 }
 
+/// `a · b` in f32, each product and sum rounded in order.
+#[inline]
+pub(crate) fn dot3(a: [f32; 3], b: [f32; 3]) -> f32 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// `a − b` in f32.
+#[inline]
+pub(crate) fn sub3(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// `a × b` in f32.
+#[inline]
+pub(crate) fn cross3(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
 /// `v` as an `f32` for `|v| < 2^24` (exact): the conversion where there is an FPU, else
 /// [`f32_from_int_bits`] (on a core without one, `as f32` is a library call; larger values,
 /// which no caller passes, are converted).
@@ -1232,13 +1254,7 @@ impl Scalar for f32 {
         })
     }
     fn face_normal(a: [Self; 3], b: [Self; 3], c: [Self; 3]) -> Option<[Self; 3]> {
-        let e1 = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-        let e2 = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-        let n = [
-            e1[1] * e2[2] - e1[2] * e2[1],
-            e1[2] * e2[0] - e1[0] * e2[2],
-            e1[0] * e2[1] - e1[1] * e2[0],
-        ];
+        let n = cross3(sub3(b, a), sub3(c, a));
         // `f32::max`'s result (a NaN passed over) by comparisons: on a Cortex-M4F it is a
         // library call (`fmaxf`).
         let max = |a: f32, b: f32| if a.is_nan() || b > a { b } else { a };
@@ -1963,13 +1979,7 @@ mod tests {
     #[test]
     fn f32_face_normal_scales_by_f32_max() {
         let reference = |a: [f32; 3], b: [f32; 3], c: [f32; 3]| {
-            let e1 = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-            let e2 = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-            let n = [
-                e1[1] * e2[2] - e1[2] * e2[1],
-                e1[2] * e2[0] - e1[0] * e2[2],
-                e1[0] * e2[1] - e1[1] * e2[0],
-            ];
+            let n = cross3(sub3(b, a), sub3(c, a));
             let m = n[0].abs().max(n[1].abs()).max(n[2].abs());
             (m > 0.0 && m.is_finite()).then(|| n.map(|v| v * (1.0 / m)))
         };

@@ -52,20 +52,25 @@ const CUBE: [[u16; 3]; 12] = [
     [2, 7, 6], // b = 1
 ];
 
+/// Faces of one colour and opacity on `triangles`.
+fn faces_of(triangles: &[[u16; 3]], color: Rgb565, alpha: u8) -> Vec<Face<'_>> {
+    triangles
+        .iter()
+        .map(|t| Face {
+            indices: &t[..],
+            color,
+            alpha,
+        })
+        .collect()
+}
+
 /// The facets frame of the cube drawn by `m`.
 fn cube_facets<N: Scalar>(m: &mut common::Method<N>) -> Capture<N> {
     let vertices: Vec<Vec3<N>> = cube_corners()
         .iter()
         .map(|p| Vec3::from_f32([p[0] as f32, p[1] as f32, p[2] as f32]).unwrap())
         .collect();
-    let faces: Vec<Face<'_>> = CUBE
-        .iter()
-        .map(|t| Face {
-            indices: &t[..],
-            color: Rgb565::WHITE,
-            alpha: 255,
-        })
-        .collect();
+    let faces = faces_of(&CUBE, Rgb565::WHITE, 255);
     let scene = ScreenScene {
         mesh: Mesh::new(&vertices, &faces),
     };
@@ -263,14 +268,7 @@ fn with_torus<N: Scalar, R>(
 ) -> R {
     let (v, t) = torus(12, 8);
     let vertices: Vec<Vec3<N>> = v.iter().map(|&p| Vec3::from_f32(p).unwrap()).collect();
-    let faces: Vec<Face<'_>> = t
-        .iter()
-        .map(|t| Face {
-            indices: &t[..],
-            color: Rgb565::CYAN,
-            alpha: 200,
-        })
-        .collect();
+    let faces = faces_of(&t, Rgb565::CYAN, 200);
     in_view(&Mesh::new(&vertices, &faces), cull, draw)
 }
 
@@ -464,14 +462,7 @@ fn long_facets_are_followed_back_sixteen_faces<N: Scalar>() {
             ]
         })
         .collect();
-    let faces: Vec<Face<'_>> = triangles
-        .iter()
-        .map(|t| Face {
-            indices: &t[..],
-            color: Rgb565::WHITE,
-            alpha: 255,
-        })
-        .collect();
+    let faces = faces_of(&triangles, Rgb565::WHITE, 255);
     let scene = ScreenScene {
         mesh: Mesh::new(&vertices, &faces),
     };
