@@ -629,7 +629,8 @@ struct RowState {
     /// Columns of the colour row that may hold something other than the background from the
     /// row before (the buffer persists from row to row): background is written only there.
     stale: (i32, i32),
-    /// Columns this row painted with a polygon (the next row's `stale`).
+    /// Columns this row may have painted with a polygon, all that it did and perhaps a few
+    /// it gave the background (the next row's `stale`).
     fresh: (i32, i32),
 }
 
@@ -1283,7 +1284,10 @@ impl<
             return;
         }
         let (mut cur, mut k) = (0i32, 0usize);
-        while cur < w {
+        let painted_to = loop {
+            if cur >= w {
+                break cur;
+            }
             // The next span that opens anything (passing over spans empty in this row or
             // already behind `cur`).
             let mut next = None;
@@ -1298,7 +1302,7 @@ impl<
             }
             let Some((slot, start, xr)) = next.filter(|&(_, start, _)| start < w) else {
                 self.paint(cur, w, None, want_depth);
-                return;
+                break cur;
             };
             self.paint(cur, start, None, want_depth);
             cur = start;
@@ -1323,9 +1327,16 @@ impl<
                 self.paint(cur, end, Some(slot), want_depth);
                 cur = end;
             } else {
+                // (It paints every column from `cur` to where it stops.)
                 (cur, k) = self.overlap(cur, k, slot, want_depth, stats);
             }
-        }
+        };
+        // The columns painted with a polygon (the next row's `stale`), found once a row rather
+        // than per span: up to where the last span painted ended, from the least left end (the
+        // keys are sorted by it; columns before the first span painted, if any, got the
+        // background this row and are only repainted with it on the next).
+        let from = self.sorted.first().map_or(w, |&key| key_left(key).max(0));
+        self.row.fresh = (from, painted_to);
     }
 
     /// The sweep from column `cur` where span `first` (already taken from the keys, up to
@@ -1423,8 +1434,6 @@ impl<
         }
         match slot {
             Some(i) => {
-                let f = &mut self.row.fresh;
-                (f.0, f.1) = (f.0.min(x0), f.1.max(x1));
                 let run = &mut self.intensity[x0 as usize..x1 as usize];
                 let a = &self.active[i];
                 if G::KEEPS {
