@@ -6,8 +6,10 @@
 #
 # 1. installs libsdl2-dev, xvfb, imagemagick and x11-utils if missing (apt-get, via sudo
 #    unless root);
-# 2. builds `zrow-sim --features window` (release) and writes the expected first frame with
-#    `zrow-sim --dump-expected` (headless, 480x480: the window shows 240x240 at 2x);
+# 2. builds `zrow-sim --features window` (a debug build: the check is of the window, not of
+#    speed, and after `cargo test` only the window's crates and zrow-sim compile) and writes
+#    the expected first frame with `zrow-sim --dump-expected` (headless, 480x480: the window
+#    shows 240x240 at 2x);
 # 3. starts `Xvfb :99`, runs `zrow-sim --paused` (frozen on that first frame), waits for its
 #    window (xwininfo, at most ~30 s), takes `import -window root`;
 # 4. cuts the window's 480x480 out of the screenshot (its position from xwininfo) and compares
@@ -46,8 +48,8 @@ fi
 # ImageMagick's own convert (Debian names it convert-im6.q16), not any other `convert` on PATH.
 CONVERT=$(command -v convert-im6.q16 || command -v convert)
 
-cargo build --release -p zrow-sim --features window
-bin="${CARGO_TARGET_DIR:-target}/release/zrow-sim"
+cargo build -p zrow-sim --features window
+bin="${CARGO_TARGET_DIR:-target}/debug/zrow-sim"
 [ -x "$bin" ] || fail "no binary at $bin"
 
 mkdir -p "$OUT"
