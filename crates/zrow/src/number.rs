@@ -659,8 +659,8 @@ fn plane_i64<N: Copy>(
 
 /// The fixed-point depth plane of [`Scalar::depth_plane`] in 128-bit integers (any input):
 /// `(z_ref, dzdx, dzdy)` as raw bits, or `None` for zero area. Out of line and cold: it runs
-/// only when [`plane_i64`] does not fit, and its 128-bit temporaries (about a kilobyte of
-/// stack on a 32-bit core) then stay out of every caller's frame.
+/// only when [`plane_i64`] does not fit, and its 128-bit temporaries (244 bytes of stack on the
+/// Cortex-M3 firmware, 324 on the Cortex-M4's) then stay out of every caller's frame.
 #[inline(never)]
 #[cold]
 fn plane_i128<N: Copy>(
@@ -684,29 +684,29 @@ fn plane_i128<N: Copy>(
 type I128x3 = (i128, i128, i128);
 
 /// Newell's normal `(A, B, C)` of the polygon `v` (raw depth bits `bits`) with `C > 0` (the
-/// same plane), and its first vertex, in 128-bit integers; `None` for zero area.
+/// same plane), and its first vertex, in 128-bit integers; `None` for zero area. Each corner is
+/// widened where it is read, not gathered first: a gathered copy of the largest polygon's
+/// corners is 864 bytes of stack, on the path of every frame that needs a 128-bit plane.
 fn normal_i128<N: Copy>(
     v: &[RasterVertex<N>],
     bits: impl Fn(N) -> i32,
 ) -> Option<(I128x3, I128x3)> {
-    let mut pts = [(0i128, 0i128, 0i128); crate::raster::MAX_POLYGON_VERTICES];
-    let n = v.len().min(pts.len());
-    for (p, q) in pts.iter_mut().zip(v) {
-        *p = (q.x as i128, q.y as i128, bits(q.z) as i128);
-    }
-    let (a, b, c) = newell(&pts[..n]);
+    let v = &v[..v.len().min(crate::raster::MAX_POLYGON_VERTICES)];
+    let wide = |q: &RasterVertex<N>| (q.x as i128, q.y as i128, bits(q.z) as i128);
+    let (a, b, c) = newell(v.len(), |k| wide(&v[k]));
     if c == 0 {
         return None;
     }
     let normal = if c < 0 { (-a, -b, -c) } else { (a, b, c) };
-    Some((normal, pts[0]))
+    Some((normal, wide(v.first()?)))
 }
 
-/// Newell's normal of a polygon in (sub-pixel, sub-pixel, depth) units, as exact integers.
-fn newell(v: &[(i128, i128, i128)]) -> (i128, i128, i128) {
+/// Newell's normal of the polygon of `n` corners `corner(0..n)` in (sub-pixel, sub-pixel,
+/// depth) units, as exact integers.
+fn newell(n: usize, corner: impl Fn(usize) -> I128x3) -> I128x3 {
     let (mut a, mut b, mut c) = (0i128, 0i128, 0i128);
-    for (k, &(x0, y0, z0)) in v.iter().enumerate() {
-        let (x1, y1, z1) = v[(k + 1) % v.len()];
+    for k in 0..n {
+        let ((x0, y0, z0), (x1, y1, z1)) = (corner(k), corner((k + 1) % n));
         a += (y0 - y1) * (z0 + z1);
         b += (z0 - z1) * (x0 + x1);
         c += (x0 - x1) * (y0 + y1);
