@@ -48,8 +48,8 @@ use crate::geometry::shade;
 use crate::method::{FrameStats, Renderer};
 use crate::number::{DepthPlane, Scalar};
 use crate::raster::{
-    canonical, fill_run, outline_triangle, outline_with_area, paint_run, row_at_or_below, Config,
-    Dda, RasterVertex, MAX_POLYGON_VERTICES, MAX_VIEWPORT,
+    canonical_with, fill_run, outline_triangle, outline_with_area, paint_run, row_at_or_below,
+    Config, Dda, RasterVertex, MAX_POLYGON_VERTICES, MAX_VIEWPORT,
 };
 use crate::requirements::Requirements;
 use crate::scene::{IntensityPlane, Scene, VertexBuffer, INDEXED_CORNERS};
@@ -296,18 +296,18 @@ impl<N: Copy, S: Slot> Ring<'_, N, S> {
         };
         &self.vertices[slot]
     }
-    /// Calls `f` with the corners in the order [`canonical`] gives.
+    /// Calls `f` with the corners in the order [`canonical`](crate::raster::canonical) gives.
     fn ordered<R>(&self, f: impl FnOnce(&[RasterVertex<N>]) -> R) -> R
     where
         N: Default,
     {
-        let n = self.len();
-        let mut v = [RasterVertex::default(); MAX_POLYGON_VERTICES];
-        for (k, d) in v.iter_mut().enumerate().take(n) {
-            *d = *self.get(k);
-        }
         let mut out = [RasterVertex::default(); MAX_POLYGON_VERTICES];
-        let n = canonical(&v[..n], self.polygon.clockwise(), &mut out);
+        let n = canonical_with(
+            self.len(),
+            |k| *self.get(k),
+            self.polygon.clockwise(),
+            &mut out,
+        );
         f(&out[..n])
     }
 }
