@@ -398,11 +398,7 @@ fn emit_indexed<N: Scalar>(
     f: &mut dyn FnMut(&Polygon<'_, N>) -> Result<(), Error>,
 ) -> Result<(), Error> {
     if corners.len() > INDEXED_CORNERS {
-        let mut v = [RasterVertex::default(); MAX_POLYGON_VERTICES];
-        for (d, &c) in v.iter_mut().zip(corners.iter()) {
-            *d = buf.as_slice()[c as usize];
-        }
-        return emit_new(buf, &v[..corners.len()], out, f);
+        return emit_run(buf, corners, out, f);
     }
     f(&Polygon {
         vertices: buf.as_slice(),
@@ -414,6 +410,24 @@ fn emit_indexed<N: Scalar>(
         face: out.face,
         area2: out.area2,
     })
+}
+
+/// [`emit_indexed`] of a polygon of more than [`INDEXED_CORNERS`] corners: its vertices
+/// copied into a run of consecutive slots. Out of line: the copy (216 bytes in a 32-bit
+/// format, and `emit_new`'s corners) stays off the stack of every face's path.
+#[cold]
+#[inline(never)]
+fn emit_run<N: Scalar>(
+    buf: &mut VertexBuffer<'_, N>,
+    corners: &[u32],
+    out: Out<N>,
+    f: &mut dyn FnMut(&Polygon<'_, N>) -> Result<(), Error>,
+) -> Result<(), Error> {
+    let mut v = [RasterVertex::default(); MAX_POLYGON_VERTICES];
+    for (d, &c) in v.iter_mut().zip(corners.iter()) {
+        *d = buf.as_slice()[c as usize];
+    }
+    emit_new(buf, &v[..corners.len()], out, f)
 }
 
 /// Hands over a polygon of new vertices (clipped, or copied for a run): as a run of
