@@ -10,6 +10,9 @@
 # and the converted icosphere's flash, plain and compact ("Bring your own model"), the emulated cube counts of cull-only and the
 # scan-line method ("Methods"), the emulated torus smooth and flat ("Smooth shading") and as hidden lines ("Hidden-line drawings"), and the scan-line RAM column of the methods table against
 # docs/methods/foley.md (which its own command writes).
+# The commands run as debug builds, which `cargo test` has built already: their figures are
+# the same in release (the frames are bit-identical, docs/extremes.md item 21; the rest is
+# counting), without a release build of the simulator and the panel crate for them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 readme=README.md
@@ -56,7 +59,7 @@ while IFS= read -r line; do
     "| interlocked"* | "| cube"* | "| mesh1k"*)
       expect "wire bytes, $(echo "$line" | cut -d'|' -f2 | xargs)" "$line" ;;
   esac
-done < <(cargo run --release -q -p zrow-st7789 --example wire)
+done < <(cargo run -q -p zrow-st7789 --example wire)
 
 # The board sink's cost on the emulated M4 (the bench's two `board sink` lines).
 sink() { grep "^# board sink, mesh1k: $1" emu/target/bench-m4.txt | sed -E 's/.*instructions=([0-9]+).*/\1/'; }
@@ -86,7 +89,7 @@ done
 # The converted torus's scan-line RAM (the README's convert command).
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
-report="$(cargo run --release -q -p zrow-sim -- convert --model assets/models/torus.off \
+report="$(cargo run -q -p zrow-sim -- convert --model assets/models/torus.off \
   --out "$tmp/torus.rs" --size 240x240 --distance 3 2>&1)"
 torus="$(echo "$report" | sed -nE 's/.*RAM: scan-line ([0-9]+) bytes.*/\1/p')"
 display="$(echo "$report" | sed -nE 's/.*RAM: scan-line [0-9]+ bytes \(([0-9]+) as a display.*/\1/p')"
@@ -95,14 +98,14 @@ expect "converted torus RAM, display renderer" "$(thousands "$display") as a dis
 
 # The converted icosphere's flash as a triangle list, and what its faces would take as a list
 # of zrow::Face (12 bytes each instead of the 2 of its one colour).
-ico="$(cargo run --release -q -p zrow-sim -- convert --model assets/models/icosphere.stl \
+ico="$(cargo run -q -p zrow-sim -- convert --model assets/models/icosphere.stl \
   --out "$tmp/icosphere.rs" --size 240x240 --distance 3 2>&1 |
   sed -nE 's/.*flash \(32-bit target\): ([0-9]+) bytes = .* faces ([0-9]+) .*/\1 \2/p')"
 read -r ico_flash ico_faces <<<"$ico"
 ico_listed=$((ico_flash - ico_faces + 12 * $(grep -c '^    \[' "$tmp/icosphere.rs")))
 expect "converted icosphere flash" "the icosphere: $(thousands "$ico_flash") bytes of flash where its faces would take $(thousands "$ico_listed")"
 # The same with compact positions.
-ico_compact="$(cargo run --release -q -p zrow-sim -- convert --model assets/models/icosphere.stl \
+ico_compact="$(cargo run -q -p zrow-sim -- convert --model assets/models/icosphere.stl \
   --out "$tmp/icosphere-compact.rs" --size 240x240 --distance 3 --compact 2>&1 |
   sed -nE 's/.*flash \(32-bit target\): ([0-9]+) bytes = .*/\1/p')"
 expect "converted icosphere flash, compact" "the icosphere: $(thousands "$ico_compact") bytes of flash instead of $(thousands "$ico_flash")"
