@@ -3,7 +3,7 @@
 //! same inputs on every run, so `cargo test` finds the same thing every time.
 //!
 //! `cargo test` runs 2,000 inputs; CI (`.ci/run`) runs 500,000 in release; a million, as below,
-//! take about 20 s on one idle core:
+//! take about a minute once built (54.8 s measured on a 2-core VM):
 //!
 //! ```sh
 //! ZROW_FUZZ_CASES=1000000 cargo test --release -p zrow --test fuzz_stable
