@@ -79,11 +79,7 @@ impl MeshGen {
             )
             .unwrap();
             writeln!(out, "pub(crate) static {name}_{ty}: [Vec3<{ty}>; {n}] = [").unwrap();
-            let q = |x: f32| {
-                let v = ((x as f64) * (1u64 << frac) as f64).round();
-                assert!(v.abs() < 2f64.powi(31), "{name}: {x} does not fit {ty}");
-                v as i32
-            };
+            let q = |x: f32| fixed_bits(x, frac, name, ty);
             for v in &self.vertices {
                 writeln!(
                     out,
@@ -97,6 +93,59 @@ impl MeshGen {
             writeln!(out, "];").unwrap();
         }
         self.emit_faces(out, name);
+    }
+
+    /// The positions snapped to the sub-pixel grid of `bits` bits, in every format, to the
+    /// bits `zrow::raster::RasterVertex::snapped` gives (`tests/formats.rs` checks them):
+    /// what a `zrow::SnappedScene` lends the renderer.
+    fn emit_snapped(&self, out: &mut String, name: &str, bits: u32) {
+        let n = self.vertices.len();
+        // f32: x·2^bits, exact, rounded half up (the floor of t + 0.5 in f32 below 2^23).
+        let snap_f32 = |x: f32| {
+            let t = x * (1u32 << bits) as f32;
+            assert!(t.abs() < 8_388_608.0, "{name}: {x} beyond the grid");
+            (t + 0.5).floor() as i32
+        };
+        writeln!(
+            out,
+            "/// Snapped to {bits} sub-pixel bits.\n\
+             pub(crate) static {name}_SNAPPED_F32: [RasterVertex<f32>; {n}] = ["
+        )
+        .unwrap();
+        for v in &self.vertices {
+            let (x, y) = (snap_f32(v[0]), snap_f32(v[1]));
+            writeln!(
+                out,
+                "    RasterVertex {{ x: {x}, y: {y}, z: {:?}f32 }},",
+                v[2]
+            )
+            .unwrap();
+        }
+        writeln!(out, "];").unwrap();
+        // Fixed point: the format's bits rounded half up to `bits` fractional bits.
+        for (ty, frac) in [("Q16_16", 16), ("Q24_8", 8)] {
+            let shift = frac - bits.min(frac);
+            let snap = |raw: i32| match shift {
+                0 => raw,
+                _ => ((raw as i64 + (1 << (shift - 1))) >> shift) as i32,
+            };
+            writeln!(
+                out,
+                "/// Snapped to {bits} sub-pixel bits.\n\
+                 pub(crate) static {name}_SNAPPED_{ty}: [RasterVertex<{ty}>; {n}] = ["
+            )
+            .unwrap();
+            for v in &self.vertices {
+                let q = |x: f32| fixed_bits(x, frac, name, ty);
+                let (x, y, z) = (snap(q(v[0])), snap(q(v[1])), q(v[2]));
+                writeln!(
+                    out,
+                    "    RasterVertex {{ x: {x}, y: {y}, z: {ty}::from_bits({z}) }},"
+                )
+                .unwrap();
+            }
+            writeln!(out, "];").unwrap();
+        }
     }
 
     /// Vectors as compact 16-bit integers at 2^-`SHIFT` (`zrow::Vectors::Compact`, 6
@@ -289,6 +338,13 @@ fn random_triangles(count: usize, size: f32, max_depth: f32, seed: u32) -> MeshG
     MeshGen { vertices, faces }
 }
 
+/// `x` in the fixed-point format `ty` of `frac` fractional bits, rounded to nearest: its bits.
+fn fixed_bits(x: f32, frac: u32, name: &str, ty: &str) -> i32 {
+    let v = ((x as f64) * (1u64 << frac) as f64).round();
+    assert!(v.abs() < 2f64.powi(31), "{name}: {x} does not fit {ty}");
+    v as i32
+}
+
 /// The comparison scene at `polygons` triangles for a 240 × 240 screen (screen space).
 fn foley(polygons: usize) -> MeshGen {
     let s = surfaces::foley_scene(polygons, 240.0).expect("a Table 15.3 polygon count");
@@ -310,7 +366,10 @@ fn main() {
     ring.emit_faces_in(&mut out, "RING_WARM_COLOR", (31, 38, 6));
     ring.emit_faces_in(&mut out, "RING_COOL_COLOR", (6, 44, 30));
     cube.emit_faces_in(&mut out, "CUBE_PLAIN_FACES", (29, 58, 26));
-    random_triangles(400, 240.0, 100.0, 0x2545_f491).emit(&mut out, "RANDOM400");
+    let random400 = random_triangles(400, 240.0, 100.0, 0x2545_f491);
+    random400.emit(&mut out, "RANDOM400");
+    // Drawn as a snapped scene at `Config::screen`'s 8 sub-pixel bits (`with_scene`).
+    random400.emit_snapped(&mut out, "RANDOM400", 8);
     foley(100).emit(&mut out, "FOLEY100");
     foley(2_500).emit(&mut out, "FOLEY2500");
     let path = std::path::Path::new(&std::env::var("OUT_DIR").unwrap()).join("meshes.rs");

@@ -10,7 +10,7 @@
 //! |---|---|---|
 //! | `cube` | model: the unit cube, 6 quads, one colour each | 6 |
 //! | `mesh1k` | model: a closed torus, 25 × 20 quads as triangles | 1,000 |
-//! | `random400` | screen space: 400 random triangles, depth 0..100, intersecting | 400 |
+//! | `random400` | screen space: 400 random triangles, depth 0..100, intersecting; snapped ([`zrow::SnappedScene`]) | 400 |
 //!
 //! Comparison scenes ([`FOLEY`], for Foley & van Dam's Table 15.3 on the emulated Cortex-M4:
 //! `crates/zrow-compare`, `emu/`): `foley100` and `foley2500`, screen space — two tilted tori
@@ -45,10 +45,11 @@
 
 use embedded_graphics_core::pixelcolor::Rgb565;
 use zrow::presets::Preset;
+use zrow::raster::RasterVertex;
 use zrow::shading::{DepthCue, Interpolation};
 use zrow::{
-    Affine, Camera, Config, Face, Light, MathLib, Mesh, ModelScene, Object, Scalar, Scene,
-    ScreenScene, Vec3, Vectors, Q16_16, Q24_8,
+    Affine, Camera, Config, Face, Faces, Light, MathLib, Mesh, ModelScene, Object, Scalar, Scene,
+    ScreenScene, SnappedScene, Vec3, Vectors, Q16_16, Q24_8,
 };
 
 mod meshes {
@@ -150,6 +151,10 @@ fn compact_triangles<N>(
 pub trait Format: Scalar {
     /// Random triangles' positions (screen space).
     fn random400() -> &'static [Vec3<Self>];
+    /// [`Format::random400`] snapped to 8 sub-pixel bits (`zrow::raster::RasterVertex::snapped`,
+    /// `Config::screen`'s grid): what [`with_scene`] draws `random400` from, as a
+    /// [`SnappedScene`].
+    fn random400_snapped() -> &'static [RasterVertex<Self>];
     /// The 100-triangle comparison scene's positions (screen space).
     fn foley100() -> &'static [Vec3<Self>];
     /// The 2,500-triangle comparison scene's positions (screen space).
@@ -159,6 +164,9 @@ pub trait Format: Scalar {
 impl Format for f32 {
     fn random400() -> &'static [Vec3<f32>] {
         &meshes::RANDOM400_F32
+    }
+    fn random400_snapped() -> &'static [RasterVertex<f32>] {
+        &meshes::RANDOM400_SNAPPED_F32
     }
     fn foley100() -> &'static [Vec3<f32>] {
         &meshes::FOLEY100_F32
@@ -172,6 +180,9 @@ impl Format for Q16_16 {
     fn random400() -> &'static [Vec3<Q16_16>] {
         &meshes::RANDOM400_Q16_16
     }
+    fn random400_snapped() -> &'static [RasterVertex<Q16_16>] {
+        &meshes::RANDOM400_SNAPPED_Q16_16
+    }
     fn foley100() -> &'static [Vec3<Q16_16>] {
         &meshes::FOLEY100_Q16_16
     }
@@ -183,6 +194,9 @@ impl Format for Q16_16 {
 impl Format for Q24_8 {
     fn random400() -> &'static [Vec3<Q24_8>] {
         &meshes::RANDOM400_Q24_8
+    }
+    fn random400_snapped() -> &'static [RasterVertex<Q24_8>] {
+        &meshes::RANDOM400_SNAPPED_Q24_8
     }
     fn foley100() -> &'static [Vec3<Q24_8>] {
         &meshes::FOLEY100_Q24_8
@@ -305,9 +319,21 @@ pub fn with_scene_math<N: Format, R>(
     if name == "interlocked" {
         return interlocked(angle, math, f);
     }
+    if name == "random400" {
+        // Its vertices lent to the renderer, snapped: a scan-line renderer keeps no copy.
+        let scene = SnappedScene {
+            vertices: N::random400_snapped(),
+            faces: Faces::Triangles {
+                indices: &meshes::RANDOM400_TRIANGLES,
+                colors: &meshes::RANDOM400_COLORS,
+            },
+            subpixel_bits: 8,
+        };
+        return Some(f(&scene, &Config::screen(SIZE, SIZE), scene.faces.len()));
+    }
     let mesh = mesh::<N>(name)?;
     let faces = mesh.faces.len();
-    if name == "random400" || FOLEY.contains(&name) {
+    if FOLEY.contains(&name) {
         return Some(f(&ScreenScene { mesh }, &Config::screen(SIZE, SIZE), faces));
     }
     #[cfg(feature = "lines")]

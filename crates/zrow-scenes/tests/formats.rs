@@ -3,7 +3,8 @@
 //! positions are on the 1/256 grid (coverage never depends on the format, `docs/conventions.md`).
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-use zrow::{FrameBuffer, Scalar, Scanline, Vec3, Q16_16, Q24_8};
+use zrow::raster::RasterVertex;
+use zrow::{Config, FrameBuffer, Scalar, Scanline, ScreenScene, Vec3, Q16_16, Q24_8};
 use zrow_scenes::Format;
 
 /// Every screen-space position array of a format, by name.
@@ -101,4 +102,43 @@ fn every_scene_renders_in_q24_8() {
             assert_eq!(covered(&q24), covered(&q16), "{name}");
         }
     }
+}
+
+/// `random400`, which [`zrow_scenes::with_scene`] lends the renderer snapped
+/// ([`zrow::SnappedScene`]), holds its positions snapped as geometry snaps a screen scene's
+/// ([`RasterVertex::snapped`]) on the grid of the configuration it comes with, in every
+/// format; so the frame is the one the screen scene of those positions draws.
+#[test]
+fn random400_is_its_positions_snapped() {
+    fn check<N: Format>() {
+        let bits = zrow_scenes::with_scene::<N, _>("random400", 0.0, |_, cfg, _| cfg.subpixel_bits)
+            .unwrap();
+        let (positions, snapped) = (N::random400(), N::random400_snapped());
+        assert_eq!(positions.len(), snapped.len());
+        for (p, s) in positions.iter().zip(snapped) {
+            assert_eq!(
+                RasterVertex::snapped(p, bits).as_ref(),
+                Some(s),
+                "{}",
+                N::NAME
+            );
+        }
+        let (lent, _) = frame::<N>("random400");
+        let mut px = vec![Rgb565::BLACK; 240 * 240];
+        let mut r = Box::new(Scanline::<N, 240, 16384, 4096, 1024>::new());
+        let scene = ScreenScene {
+            mesh: zrow_scenes::mesh::<N>("random400").unwrap(),
+        };
+        r.render(
+            &scene,
+            &Config::screen(240, 240),
+            &mut FrameBuffer::new(&mut px, 240),
+        )
+        .unwrap();
+        assert!(lent == px, "{}", N::NAME);
+        assert!(px.iter().filter(|&&p| p != Rgb565::BLACK).count() > 40_000);
+    }
+    check::<f32>();
+    check::<Q16_16>();
+    check::<Q24_8>();
 }

@@ -68,6 +68,13 @@ pub enum Error {
         /// Face number.
         face: u32,
     },
+    /// A vertex of face `face` of a [`crate::SnappedScene`] lies outside the guard band
+    /// ([`crate::raster::GUARD_BAND`] pixels around the frame), which such a scene does not
+    /// clip: move it in, or draw the scene unsnapped ([`crate::ScreenScene`] clips).
+    OutsideGuardBand {
+        /// Face number.
+        face: u32,
+    },
     /// Face `face` is not convex (its outline goes down and up more than once, or clipping it
     /// made more corners than a convex face can have): split it into triangles.
     NotConvex {
@@ -158,6 +165,7 @@ impl Error {
             | Error::TooFewVertices { face }
             | Error::TooManyVertices { face }
             | Error::NonFinite { face }
+            | Error::OutsideGuardBand { face }
             | Error::NotConvex { face } => Some(face),
             _ => None,
         }
@@ -189,6 +197,11 @@ impl core::fmt::Display for Error {
             Error::NonFinite { face } => write!(
                 f,
                 "face {face}: coordinate not finite or outside the number format"
+            ),
+            Error::OutsideGuardBand { face } => write!(
+                f,
+                "face {face}: snapped vertex outside the guard band ({} pixels around the frame)",
+                crate::raster::GUARD_BAND
             ),
             Error::NotConvex { face } => write!(f, "face {face}: not convex"),
             Error::Normals { faces, normals } => write!(

@@ -39,7 +39,7 @@ use crate::raster::{
 };
 use crate::scene::{
     Face, Faces, IntensityPlane, Mesh, MeshIndex, ModelScene, Polygon, Projection, Scene,
-    ScreenScene, Vectors, VertexBuffer, INDEXED_CORNERS,
+    ScreenScene, SnappedScene, Vectors, VertexBuffer, INDEXED_CORNERS,
 };
 use crate::shading::Shading;
 use core::cell::Cell;
@@ -679,6 +679,90 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ScreenScene<'_, N, I> {
             }
         }
         Ok(())
+    }
+
+    /// Screen-space depth is the view distance itself.
+    fn view_depth(&self, _cfg: &Config) -> Option<ViewDepth<N>> {
+        Some(ViewDepth::Linear {
+            near: N::ZERO,
+            per_depth: N::ONE,
+        })
+    }
+}
+
+impl<N: Scalar, I: MeshIndex> Scene<N> for SnappedScene<'_, N, I> {
+    /// Each face as it is, over the scene's own vertices (checked, not copied).
+    fn polygons(
+        &self,
+        cfg: &Config,
+        _: &mut VertexBuffer<'_, N>,
+        f: &mut dyn FnMut(&Polygon<'_, N>) -> Result<(), Error>,
+    ) -> Result<(), Error> {
+        cfg.validate(usize::MAX)?;
+        if self.subpixel_bits != cfg.subpixel_bits {
+            return Err(Error::BadConfig);
+        }
+        if cfg.shading.is_facets() {
+            return Err(Error::Unsupported {
+                feature: "hidden lines of a snapped scene: draw its ScreenScene",
+            });
+        }
+        let s = cfg.subpixel_bits as u32;
+        let lo = -GUARD_BAND << s;
+        let (hx, hy) = (
+            (cfg.width as i32 + GUARD_BAND) << s,
+            (cfg.height as i32 + GUARD_BAND) << s,
+        );
+        let vertices = self.vertices;
+        let mut corners = [0u32; MAX_POLYGON_VERTICES];
+        for (no, face) in self.faces.iter().enumerate() {
+            let no = no as u32;
+            let n = face.indices.len();
+            if n < 3 {
+                return Err(Error::TooFewVertices { face: no });
+            }
+            if n > MAX_FACE_VERTICES {
+                return Err(Error::TooManyVertices { face: no });
+            }
+            for (c, i) in corners.iter_mut().zip(face.indices) {
+                let i = i.index();
+                let Some(v) = vertices.get(i) else {
+                    return Err(Error::IndexOutOfRange {
+                        face: no,
+                        index: i as u32,
+                    });
+                };
+                if !(v.x >= lo && v.x <= hx && v.y >= lo && v.y <= hy) {
+                    return Err(Error::OutsideGuardBand { face: no });
+                }
+                if !v.z.is_finite() {
+                    return Err(Error::NonFinite { face: no });
+                }
+                *c = i as u32;
+            }
+            let corners = &corners[..n];
+            if n > INDEXED_CORNERS && !(1..n).all(|k| corners[k] == corners[0] + k as u32) {
+                return Err(Error::Unsupported {
+                    feature: "a snapped scene's face of more than 4 corners on vertices that \
+                              are not consecutive",
+                });
+            }
+            f(&Polygon {
+                vertices,
+                corners,
+                cached: true,
+                area2: area_of(vertices, corners),
+                color: face.color,
+                intensity: None,
+                alpha: face.alpha,
+                face: no,
+            })?;
+        }
+        Ok(())
+    }
+
+    fn lent_vertices(&self) -> Option<&[RasterVertex<N>]> {
+        Some(self.vertices)
     }
 
     /// Screen-space depth is the view distance itself.

@@ -36,7 +36,8 @@
 //! 1. [`number`]: the number formats ([`Q16_16`], [`Q24_8`], `f32`) behind [`Scalar`], with
 //!    exact rounding rules; [`math`]: vectors and affine transforms in any of them.
 //! 2. [`scene`]: meshes, objects, camera and light ([`ModelScene`]), or polygons already in
-//!    screen space ([`ScreenScene`]).
+//!    screen space ([`ScreenScene`]; [`SnappedScene`] if their vertices are snapped too, which
+//!    the scan-line method then reads where they are, keeping no copy).
 //! 3. [`geometry`]: every vertex transformed, projected and snapped once, back faces culled by
 //!    their snapped winding ([`backface`]), the rest clipped to the view and the guard band
 //!    and lit: flat, or smooth from normals at the vertices ([`shading`], also the depth
@@ -126,7 +127,7 @@ pub use requirements::{requirements, requirements_with, Requirements};
 pub use scanline::Scanline;
 pub use scene::{
     Camera, Face, Faces, FacesIter, IntensityPlane, Light, Mesh, MeshIndex, ModelScene, Object,
-    Projection, Scene, ScreenScene, Vectors, VectorsIter,
+    Projection, Scene, ScreenScene, SnappedScene, Vectors, VectorsIter,
 };
 pub use sink::{DrawTargetSink, Drawing, FrameBuffer, Row, RowSink};
 pub use zbuffer::ZBuffer;

@@ -47,6 +47,21 @@ pub struct RasterVertex<N> {
     pub z: N,
 }
 
+impl<N: Scalar> RasterVertex<N> {
+    /// The screen-space point `p` (x right, y down, in pixels; z depth) snapped to the grid
+    /// of `subpixel_bits` sub-pixel bits, to the bits geometry snaps a
+    /// [`crate::ScreenScene`]'s vertex to: what a [`crate::SnappedScene`] is made of. `None`
+    /// if a coordinate is not a number or beyond the grid's range.
+    pub fn snapped(p: &crate::math::Vec3<N>, subpixel_bits: u8) -> Option<Self> {
+        let s = subpixel_bits as u32;
+        Some(RasterVertex {
+            x: p.x.snap(s)?,
+            y: p.y.snap(s)?,
+            z: p.z.is_finite().then_some(p.z)?,
+        })
+    }
+}
+
 /// A convex polygon after geometry: clipped, projected and snapped.
 #[derive(Clone, Debug)]
 pub struct RasterPolygon<N> {

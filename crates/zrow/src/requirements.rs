@@ -18,7 +18,8 @@ pub struct Requirements {
     pub edges: u32,
     /// Vertex slots of the frame's vertex buffer (the scan-line method's vertex capacity): one
     /// per vertex of every object's mesh, plus the vertices clipping makes and the runs of
-    /// polygons with more than [`crate::scene::INDEXED_CORNERS`] corners.
+    /// polygons with more than [`crate::scene::INDEXED_CORNERS`] corners; 0 for a scene that
+    /// lends its vertices ([`crate::SnappedScene`]).
     pub vertices: u32,
     /// Most polygons crossing one row (active list).
     pub active_polygons: u32,

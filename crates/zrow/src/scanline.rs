@@ -543,7 +543,8 @@ pub type Display<N, const W: usize, const V: usize, const P: usize, const A: usi
 /// - `N`: number format ([`crate::Q16_16`], [`crate::Q24_8`] or `f32`);
 /// - `W`: row capacity (the widest frame, in pixels);
 /// - `V`: vertex buffer (every vertex of the scene's meshes once, plus what clipping adds: see
-///   [`Requirements::vertices`]);
+///   [`Requirements::vertices`]; none for a scene that lends its snapped vertices,
+///   [`crate::SnappedScene`], which the sweep then reads where they are);
 /// - `P`: polygon table; `A`: active list (polygons crossing one row);
 /// - `S`: the slot number type ([`Slot`]: `u16` up to 65,536 vertex slots, else `u32`);
 /// - `C`: where the affine depth cue's per-edge state is kept ([`CueStore`]; [`Uncued`] for
@@ -569,6 +570,13 @@ pub struct Scanline<
     /// The frame's vertex buffer: geometry writes every vertex here once, projected and
     /// snapped; polygons refer to it by slot.
     vertices: [RasterVertex<N>; V],
+    /// The rest: the tables and rows of the sweep, which reads its vertices from the buffer
+    /// or, if the scene lends them ([`Scene::lent_vertices`]), from the scene.
+    sweep: Sweep<N, W, P, A, S, C, G, D>,
+}
+
+/// The scan-line renderer's state besides its vertex buffer.
+struct Sweep<N: Scalar, const W: usize, const P: usize, const A: usize, S: Slot, C, G, D> {
     polygons: Vec<Polygon<S>, P>,
     /// Polygon numbers by first row (stable: scene order within a row).
     order: Vec<u16, P>,
@@ -705,43 +713,45 @@ impl<
                 y: 0,
                 z: N::ZERO,
             }; V],
-            polygons: Vec::new(),
-            order: Vec::new(),
-            active: [Active {
-                dda: [Dda::ZERO; 2],
-                end: [0; 2],
-                dzdx: N::ZERO,
-                dzdy: N::ZERO,
-                plane_ref: N::PLANE_REF_ZERO,
-                z_row: N::ZERO,
-                poly: 0,
-                color: Rgb565::BLACK,
-            }; A],
-            cues: C::EMPTY,
-            shades: G::EMPTY,
-            used: 0,
-            free: 0,
-            sorted: Vec::new(),
-            open: Vec::new(),
-            // All zero, so a `static` renderer lands in .bss, not copied from flash; both rows
-            // are rewritten in full before each is sent.
-            depth: D::EMPTY,
-            intensity: [Rgb565::BLACK; W],
-            cue: Cue::UNSET,
-            cued: false,
-            edges: 0,
-            cover: 0,
-            row: RowState {
-                y: 0,
-                width: 0,
-                s: 0,
-                background: Rgb565::BLACK,
-                cue: false,
-                more: false,
-                #[cfg(feature = "exact-depth")]
-                exact: false,
-                stale: (0, 0),
-                fresh: (0, 0),
+            sweep: Sweep {
+                polygons: Vec::new(),
+                order: Vec::new(),
+                active: [Active {
+                    dda: [Dda::ZERO; 2],
+                    end: [0; 2],
+                    dzdx: N::ZERO,
+                    dzdy: N::ZERO,
+                    plane_ref: N::PLANE_REF_ZERO,
+                    z_row: N::ZERO,
+                    poly: 0,
+                    color: Rgb565::BLACK,
+                }; A],
+                cues: C::EMPTY,
+                shades: G::EMPTY,
+                used: 0,
+                free: 0,
+                sorted: Vec::new(),
+                open: Vec::new(),
+                // All zero, so a `static` renderer lands in .bss, not copied from flash; both rows
+                // are rewritten in full before each is sent.
+                depth: D::EMPTY,
+                intensity: [Rgb565::BLACK; W],
+                cue: Cue::UNSET,
+                cued: false,
+                edges: 0,
+                cover: 0,
+                row: RowState {
+                    y: 0,
+                    width: 0,
+                    s: 0,
+                    background: Rgb565::BLACK,
+                    cue: false,
+                    more: false,
+                    #[cfg(feature = "exact-depth")]
+                    exact: false,
+                    stale: (0, 0),
+                    fresh: (0, 0),
+                },
             },
         }
     }
@@ -762,20 +772,45 @@ impl<
                           (its `D` parameter is `NoDepth`)",
             }));
         }
-        let mut stats = self.prepare(scene, cfg)?;
-        self.run_rows(cfg, sink, &mut stats)
+        let lent = scene.lent_vertices();
+        let mut stats = self.sweep.prepare(&mut self.vertices, lent, scene, cfg)?;
+        let vertices = match lent {
+            Some(v) => v,
+            None => &self.vertices[..],
+        };
+        self.sweep
+            .run_rows(vertices, cfg, sink, &mut stats)
             .map_err(RenderError::Sink)?;
         Ok(stats)
     }
+}
 
+impl<
+        N: Scalar,
+        const W: usize,
+        const P: usize,
+        const A: usize,
+        S: Slot,
+        C: CueStore<N>,
+        G: ShadeStore<N>,
+        D: DepthRow<N>,
+    > Sweep<N, W, P, A, S, C, G, D>
+{
     /// Builds the polygon table, buckets it by first row and checks the active list's
     /// capacity.
     fn prepare(
         &mut self,
+        buffer: &mut [RasterVertex<N>],
+        lent: Option<&[RasterVertex<N>]>,
         scene: &(impl Scene<N> + ?Sized),
         cfg: &Config,
     ) -> Result<FrameStats, Error> {
         cfg.validate(W)?;
+        if lent.is_some_and(|v| v.len() > S::MAX_SLOTS) {
+            return Err(Error::Unsupported {
+                feature: "lent vertices beyond this renderer's slot type: use wider slots",
+            });
+        }
         let cue = Cue::for_frame(scene, cfg)?;
         if !C::KEEPS && cue.is_some_and(|c| c.interpolation == Interpolation::Affine) {
             return Err(Error::Unsupported {
@@ -804,10 +839,15 @@ impl<
             true => N::from_f32(255.0).unwrap_or(N::ONE),
             false => N::ZERO,
         };
-        // Where the frame's buffer lies: a polygon is kept by slot only if its vertices are
-        // that buffer (compared as addresses; a scene of its own might hand over others).
-        let frame_buffer = self.vertices.as_ptr();
-        let mut buf = VertexBuffer::new(&mut self.vertices);
+        // Where the frame's vertices lie (the buffer, or what the scene lends): a polygon is
+        // kept by slot only if its vertices are those (compared as addresses, and within
+        // them; a scene of its own might hand over others).
+        let (frame, frame_len) = match lent {
+            Some(v) => (v.as_ptr(), v.len()),
+            None => (buffer.as_ptr(), buffer.len()),
+        };
+        let capacity = buffer.len();
+        let mut buf = VertexBuffer::new(buffer);
         // The active list's difference array (see `max_active`), filled as polygons enter the
         // table while their rows are at hand, in the colour row (free until the first row is
         // drawn) when the frame is no taller than it.
@@ -861,7 +901,8 @@ impl<
             // In the frame's buffer, and a polygon of more than INDEXED_CORNERS corners a run
             // of consecutive slots, as `Polygon::cached` promises (else treated as scratch).
             let cached = poly.cached
-                && core::ptr::eq(poly.vertices.as_ptr(), frame_buffer)
+                && core::ptr::eq(poly.vertices.as_ptr(), frame)
+                && poly.vertices.len() <= frame_len
                 && (n <= INDEXED_CORNERS
                     || (1..n).all(|k| poly.corners[k] == poly.corners[0].wrapping_add(k as u32)));
             // Past a capacity, keep counting so the error can say what the scene needs.
@@ -911,10 +952,10 @@ impl<
         if polys as usize > P {
             return Err(over(Table::Polygons, polys, P));
         }
-        if uncached || buf.needed() > V {
-            return Err(over(Table::Vertices, buf.needed() as u32, V));
+        if uncached || buf.needed() > capacity {
+            return Err(over(Table::Vertices, buf.needed() as u32, capacity));
         }
-        let max_active = self.max_active(cfg, counted)?;
+        let max_active = self.max_active(lent.unwrap_or(buf.as_slice()), cfg, counted)?;
         self.bucket(cfg);
         self.edges = 0;
         Ok(FrameStats {
@@ -971,7 +1012,13 @@ impl<
     /// borrow the colour row, as [`Self::bucket`]'s do. `counted`: [`Self::prepare`] filled it
     /// as the polygons entered the table (a frame no taller than the row); otherwise it is
     /// built here, a row's width of rows at a time, from the polygons' corners.
-    fn max_active(&mut self, cfg: &Config, counted: bool) -> Result<u32, Error> {
+    #[inline(always)]
+    fn max_active(
+        &mut self,
+        vertices: &[RasterVertex<N>],
+        cfg: &Config,
+        counted: bool,
+    ) -> Result<u32, Error> {
         let height = cfg.height as usize;
         let (raw, of) = (count, count_of);
         let (mut max, mut base) = (0u16, 0usize);
@@ -991,7 +1038,7 @@ impl<
             let mut running = 0u16;
             for p in &self.polygons {
                 let ring = Ring {
-                    vertices: &self.vertices,
+                    vertices,
                     polygon: p,
                 };
                 let (first, last) = (p.first_row() as usize, last_row_of(&ring, cfg) as usize);
@@ -1026,6 +1073,7 @@ impl<
 
     fn run_rows<K: RowSink<N>>(
         &mut self,
+        vertices: &[RasterVertex<N>],
         cfg: &Config,
         sink: &mut K,
         stats: &mut FrameStats,
@@ -1047,7 +1095,7 @@ impl<
                     break;
                 }
                 cursor += 1;
-                self.activate(i, y, cfg, want_depth);
+                self.activate(vertices, i, y, cfg, want_depth);
             }
             // The whole row is unknown on the first row of a frame.
             let stale = if y == 0 {
@@ -1075,7 +1123,7 @@ impl<
             if self.cover <= HEAVY_COVER * width as i32 || self.row.cue || !D::KEEPS {
                 self.sort_active(old);
             }
-            self.resolve_row(want_depth, stats);
+            self.resolve_row(vertices, want_depth, stats);
             let depth: &[N] = if want_depth {
                 if !(EXACT_DEPTH && K::WANTS_DEPTH) {
                     // (A sink that reads depth had the cue on each piece, before its exact
@@ -1095,7 +1143,7 @@ impl<
                 color: &self.intensity[..width],
                 depth,
             })?;
-            self.advance(y, cfg);
+            self.advance(vertices, y, cfg);
         }
         stats.edges = self.edges;
         Ok(())
@@ -1104,7 +1152,14 @@ impl<
     /// Polygon `i` enters the active list on row `y`, its first: its depth plane, and its two
     /// edges found down each side from its top vertex.
     #[inline(never)]
-    fn activate(&mut self, i: u16, y: i32, cfg: &Config, want_depth: bool) {
+    fn activate(
+        &mut self,
+        vertices: &[RasterVertex<N>],
+        i: u16,
+        y: i32,
+        cfg: &Config,
+        want_depth: bool,
+    ) {
         let slot = if let Some(a) = self.active.get((self.free as usize).wrapping_sub(1)) {
             let slot = self.free - 1;
             self.free = a.poly; // popped
@@ -1118,7 +1173,7 @@ impl<
         let cue = self.affine_cue();
         let p = &self.polygons[i as usize];
         let ring = Ring {
-            vertices: &self.vertices,
+            vertices,
             polygon: p,
         };
         let a = &mut self.active[slot as usize];
@@ -1146,7 +1201,7 @@ impl<
         a.color = p.color;
         if want_depth || cue.is_some() {
             let planes = Planes {
-                vertices: &self.vertices,
+                vertices,
                 polygons: &self.polygons,
                 s: cfg.subpixel_bits as u32,
                 y,
@@ -1192,12 +1247,11 @@ impl<
     /// Retires what ends on row `y` and steps the rest to the next row: each edge one row
     /// down, or, where it ends, the next edge of its side; the span and its left depth.
     #[inline(never)]
-    fn advance(&mut self, y: i32, cfg: &Config) {
-        let Scanline {
+    fn advance(&mut self, vertices: &[RasterVertex<N>], y: i32, cfg: &Config) {
+        let Sweep {
             active,
             free,
             polygons,
-            vertices,
             edges,
             sorted,
             ..
@@ -1277,10 +1331,15 @@ impl<
     /// inside is filled at once, with no bookkeeping; the sweep above runs only from where
     /// spans overlap until nothing is open again.
     #[inline(never)]
-    fn resolve_row(&mut self, want_depth: bool, stats: &mut FrameStats) {
+    fn resolve_row(
+        &mut self,
+        vertices: &[RasterVertex<N>],
+        want_depth: bool,
+        stats: &mut FrameStats,
+    ) {
         let w = self.row.width;
         if self.cover > HEAVY_COVER * w && !self.row.cue && D::KEEPS {
-            self.resolve_by_depth();
+            self.resolve_by_depth(vertices);
             return;
         }
         let (mut cur, mut k) = (0i32, 0usize);
@@ -1301,10 +1360,10 @@ impl<
                 }
             }
             let Some((slot, start, xr)) = next.filter(|&(_, start, _)| start < w) else {
-                self.paint(cur, w, None, want_depth);
+                self.paint(vertices, cur, w, None, want_depth);
                 break cur;
             };
-            self.paint(cur, start, None, want_depth);
+            self.paint(vertices, cur, start, None, want_depth);
             cur = start;
             // Alone unless a later span opens before this one ends.
             let mut j = k;
@@ -1324,11 +1383,11 @@ impl<
                 k = j; // the spans passed over are empty
                 let end = xr.min(w);
                 stats.front_changes += 1;
-                self.paint(cur, end, Some(slot), want_depth);
+                self.paint(vertices, cur, end, Some(slot), want_depth);
                 cur = end;
             } else {
                 // (It paints every column from `cur` to where it stops.)
-                (cur, k) = self.overlap(cur, k, slot, want_depth, stats);
+                (cur, k) = self.overlap(vertices, cur, k, slot, want_depth, stats);
             }
         };
         // The columns painted with a polygon (the next row's `stale`), found once a row rather
@@ -1346,6 +1405,7 @@ impl<
     #[inline(never)]
     fn overlap(
         &mut self,
+        vertices: &[RasterVertex<N>],
         mut cur: i32,
         mut k: usize,
         first: usize,
@@ -1358,7 +1418,7 @@ impl<
         self.open.clear();
         let _ = self.open.push(first as u16);
         let planes = Planes {
-            vertices: &self.vertices,
+            vertices,
             polygons: &self.polygons,
             s,
             y,
@@ -1370,7 +1430,7 @@ impl<
         loop {
             let (active, sorted, open) = (&mut self.active[..], &self.sorted[..], &mut self.open);
             let planes = Planes {
-                vertices: &self.vertices,
+                vertices,
                 polygons: &self.polygons,
                 s,
                 y,
@@ -1410,7 +1470,7 @@ impl<
                 stats.front_changes += 1;
             }
             let next = next_start.min(front_xr).min(until).min(w);
-            self.paint(cur, next, Some(front), want_depth);
+            self.paint(vertices, cur, next, Some(front), want_depth);
             cur = next;
             if cur >= w {
                 return (cur, k);
@@ -1428,7 +1488,14 @@ impl<
     /// Fills columns `x0..x1` of the row from the polygon in `slot` (its colour, and its depth
     /// when someone reads it), or with the background.
     #[inline]
-    fn paint(&mut self, x0: i32, x1: i32, slot: Option<usize>, want_depth: bool) {
+    fn paint(
+        &mut self,
+        vertices: &[RasterVertex<N>],
+        x0: i32,
+        x1: i32,
+        slot: Option<usize>,
+        want_depth: bool,
+    ) {
         if x0 >= x1 {
             return;
         }
@@ -1455,7 +1522,7 @@ impl<
             }
         }
         if self.row.more {
-            self.paint_more(x0, x1, slot, want_depth);
+            self.paint_more(vertices, x0, x1, slot, want_depth);
         }
     }
 
@@ -1471,7 +1538,7 @@ impl<
     /// than the block's farthest, no pixel of the block can win — the block, or the whole
     /// span, is passed over exactly.
     #[inline(never)]
-    fn resolve_by_depth(&mut self) {
+    fn resolve_by_depth(&mut self, vertices: &[RasterVertex<N>]) {
         /// No polygon.
         const NOBODY: u16 = u16::MAX;
         let raw = |c: Rgb565| RawU16::from(c).into_inner();
@@ -1486,7 +1553,7 @@ impl<
         } = self.row;
         let w = width as usize;
         let planes = Planes {
-            vertices: &self.vertices,
+            vertices,
             polygons: &self.polygons,
             s,
             y,
@@ -1622,7 +1689,7 @@ impl<
             }
         }
         if G::KEEPS || self.row.exact() {
-            return self.owners_to_shades(background);
+            return self.owners_to_shades(vertices, background);
         }
         // Owners to colours; neighbours mostly share an owner, so the last lookup is kept.
         let (mut last, mut color) = (NOBODY, background);
@@ -1641,7 +1708,7 @@ impl<
 
     /// [`Self::resolve_by_depth`]'s owners to colours under smooth shading: each owner's
     /// intensity plane at its pixels, stepped along the row from where a run of it starts.
-    fn owners_to_shades(&mut self, background: Rgb565) {
+    fn owners_to_shades(&mut self, vertices: &[RasterVertex<N>], background: Rgb565) {
         let raw = |c: Rgb565| RawU16::from(c).into_inner();
         let y = self.row.y;
         let width = (self.row.width.max(0) as usize).min(W);
@@ -1657,7 +1724,7 @@ impl<
                 None => fill_run(run, background), // NOBODY
             }
             if self.row.exact() && (o as usize) < self.polygons.len() {
-                self.exact_depths(o as usize, x, end);
+                self.exact_depths(vertices, o as usize, x, end);
             }
             x = end;
         }
@@ -1666,7 +1733,14 @@ impl<
     /// The depth (when read) and affine cue of a piece [`Self::paint`] coloured.
     #[cold]
     #[inline(never)]
-    fn paint_more(&mut self, x0: i32, x1: i32, slot: Option<usize>, want_depth: bool) {
+    fn paint_more(
+        &mut self,
+        vertices: &[RasterVertex<N>],
+        x0: i32,
+        x1: i32,
+        slot: Option<usize>,
+        want_depth: bool,
+    ) {
         let (a0, a1) = (x0 as usize, x1 as usize);
         let Some(slot) = slot else {
             if want_depth {
@@ -1676,7 +1750,7 @@ impl<
         };
         if want_depth {
             let planes = Planes {
-                vertices: &self.vertices,
+                vertices,
                 polygons: &self.polygons,
                 s: self.row.s,
                 y: self.row.y,
@@ -1685,7 +1759,7 @@ impl<
             fill_depth(&mut self.depth.parts().0[a0..a1], &self.active[slot], x0);
             if self.row.exact() {
                 let poly = self.active[slot].poly as usize;
-                self.exact_depths(poly, a0, a1);
+                self.exact_depths(vertices, poly, a0, a1);
             }
         }
         if let (true, Some(e)) = (self.row.cue, self.cues.at(slot)) {
@@ -1699,7 +1773,7 @@ impl<
     /// a cost only such a sink pays).
     #[cold]
     #[inline(never)]
-    fn exact_depths(&mut self, poly: usize, a0: usize, a1: usize) {
+    fn exact_depths(&mut self, vertices: &[RasterVertex<N>], poly: usize, a0: usize, a1: usize) {
         let (Some(depth), Some(colours)) = (
             self.depth.parts().0.get_mut(a0..a1),
             self.intensity.get_mut(a0..a1),
@@ -1712,7 +1786,7 @@ impl<
             return;
         };
         let ring = Ring {
-            vertices: &self.vertices,
+            vertices,
             polygon: p,
         };
         if let Some(e) = exact_of(&ring, self.row.s) {

@@ -651,6 +651,56 @@ pub struct ScreenScene<'a, N, I = u16> {
     pub mesh: Mesh<'a, N, I>,
 }
 
+/// A scene in screen space whose vertices are already snapped to the sub-pixel grid
+/// ([`RasterVertex`]: x right and y down in sub-pixels of `subpixel_bits` bits, z depth,
+/// smaller nearer), each face in its own colour: the [`ScreenScene`] of the same positions
+/// unsnapped, drawn the same, but lent to the renderer ([`Scene::lent_vertices`]) — the
+/// scan-line method reads its vertices where they are (in flash, or wherever the application
+/// keeps them) instead of copying them into its vertex buffer, so it needs none
+/// ([`crate::Requirements::vertices`] is 0: 12 bytes a vertex less in a 32-bit format).
+///
+/// It is not clipped: every vertex a face uses must lie within the guard band,
+/// [`GUARD_BAND`](crate::raster::GUARD_BAND) pixels around the frame
+/// ([`Error::OutsideGuardBand`]); `subpixel_bits` must be the frame's
+/// ([`Config::subpixel_bits`], else [`Error::BadConfig`]); a face of more than
+/// [`INDEXED_CORNERS`] corners lists consecutive vertices (`i, i + 1, …`, else
+/// [`Error::Unsupported`]). Hidden-line frames ([`crate::shading::Shading::Facets`]) are
+/// drawn from a [`ScreenScene`] ([`Error::Unsupported`]).
+///
+/// ```
+/// use zrow::raster::RasterVertex;
+/// use zrow::{Config, Face, Faces, FrameBuffer, Q16_16, Scanline, SnappedScene, Vec3};
+/// use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+///
+/// let cfg = Config::screen(8, 8);
+/// let snap = |x: f32, y: f32, z: f32| {
+///     let p = Vec3::<Q16_16>::from_f32([x, y, z]).unwrap();
+///     RasterVertex::snapped(&p, cfg.subpixel_bits).unwrap()
+/// };
+/// let vertices = [snap(0.5, 0.5, 1.0), snap(7.5, 0.5, 1.0), snap(0.5, 7.5, 1.0)];
+/// let faces = [Face { indices: &[0u16, 1, 2], color: Rgb565::RED, alpha: 255 }];
+/// let scene = SnappedScene {
+///     vertices: &vertices,
+///     faces: Faces::List(&faces),
+///     subpixel_bits: cfg.subpixel_bits,
+/// };
+/// // No vertex buffer (V = 0): the renderer reads the scene's vertices.
+/// let mut renderer = Scanline::<Q16_16, 8, 0, 1, 1>::new();
+/// let mut pixels = [Rgb565::BLACK; 8 * 8];
+/// renderer.render(&scene, &cfg, &mut FrameBuffer::new(&mut pixels, 8)).unwrap();
+/// assert_eq!(pixels[8 + 1], Rgb565::RED);
+/// assert_eq!(zrow::requirements(&scene, &cfg).unwrap().vertices, 0);
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct SnappedScene<'a, N, I = u16> {
+    /// The vertices, snapped to `subpixel_bits` sub-pixel bits.
+    pub vertices: &'a [RasterVertex<N>],
+    /// The faces: a list of [`Face`]s, or triangles of one colour ([`Faces`]).
+    pub faces: Faces<'a, I>,
+    /// The sub-pixel bits the vertices are snapped to: the frame's.
+    pub subpixel_bits: u8,
+}
+
 /// Polygons with at most this many corners are handed over by index
 /// ([`Polygon::corners`]); geometry hands larger ones over as a run of consecutive slots of the
 /// vertex buffer, so a renderer can keep any polygon in a few bytes.
@@ -730,14 +780,16 @@ impl<'a, N: Copy> VertexBuffer<'a, N> {
 /// One polygon from geometry: clipped, projected and snapped, with its colour.
 #[derive(Clone, Copy, Debug)]
 pub struct Polygon<'a, N> {
-    /// The vertices it refers to: the frame's [`VertexBuffer`] so far when
-    /// [`Polygon::cached`], else scratch valid for this call only.
+    /// The vertices it refers to: the frame's [`VertexBuffer`] so far, or all the vertices
+    /// the scene lends ([`Scene::lent_vertices`]), when [`Polygon::cached`]; else scratch
+    /// valid for this call only.
     pub vertices: &'a [RasterVertex<N>],
     /// Its corners in order (either winding), as indices into `vertices`. When `cached`, a
     /// polygon with more than [`INDEXED_CORNERS`] corners has them consecutive.
     pub corners: &'a [u32],
-    /// Whether `vertices` is the frame's buffer, so that a renderer may keep `corners` for the
-    /// rest of the frame (else it must copy what it keeps).
+    /// Whether `vertices` is the frame's buffer or the scene's lent vertices, so that a
+    /// renderer may keep `corners` for the rest of the frame (else it must copy what it
+    /// keeps).
     pub cached: bool,
     /// Twice its signed area on the sub-pixel grid, exact (positive: clockwise on the display),
     /// as [`crate::raster::signed_area2`] gives it: geometry has it from culling.
@@ -840,6 +892,15 @@ pub trait Scene<N: Scalar> {
         vertices: &mut VertexBuffer<'_, N>,
         f: &mut dyn FnMut(&Polygon<'_, N>) -> Result<(), Error>,
     ) -> Result<(), Error>;
+
+    /// The snapped vertices the scene keeps for the whole frame and hands its polygons over
+    /// in, if it does ([`Polygon::vertices`] this very slice): a renderer that keeps polygons
+    /// for the frame (the scan-line method) then reads them where they are, instead of
+    /// having geometry copy them into its vertex buffer. `None` (the default): the scene
+    /// writes them into the buffer ([`Scene::polygons`]).
+    fn lent_vertices(&self) -> Option<&[RasterVertex<N>]> {
+        None
+    }
 
     /// How stored depth maps back to view distance under `cfg`, for stages after visibility
     /// (depth cueing). `None` if the scene has no notion of distance (then shading is flat).
