@@ -81,7 +81,7 @@ echo "== where the shipped F411's cycles go: a frame of each demo scene, by func
 "$py" "$here/f411.py" "$root/firmware/target/thumbv7em-none-eabihf/release/zrow-firmware" \
   "$out/profile.stream" --frames-per-scene 1 --frames 3 --profile 20 | tee "$out/profile.txt"
 # The blocks are charged to the functions they are in: the renderer's sweep is among the first.
-grep -q '^ .*zrow::scanline::Scanline<.*>::resolve_row$' "$out/profile.txt" ||
+grep -q '^ .*zrow::scanline::Sweep<.*>::resolve_row$' "$out/profile.txt" ||
   { echo "error: the profile does not name the scan-line renderer's resolve_row" >&2; exit 1; }
 
 echo "== the Blue Pill (STM32F103C8): its shipped firmware, $((2 * per_scene)) frames of its two scenes"
