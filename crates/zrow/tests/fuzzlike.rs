@@ -7,7 +7,7 @@
 //! zero-area faces, repeated and out-of-range indices, faces of 0..12 vertices, more polygons
 //! than the capacity — and extreme configurations (1×1, 2048 wide, 1 and 8 sub-pixel bits,
 //! and invalid ones) go to every method, cull-only and ordered included, in every format, in
-//! screen space and in model mode. f32 coordinates reach a fixed-point format through its
+//! screen space (also snapped: [`zrow::SnappedScene`]) and in model mode. f32 coordinates reach a fixed-point format through its
 //! checked conversion: the conversion must refuse exactly the values the format cannot hold
 //! (the typed refusal a loader reports), and the test then feeds the format's nearest value
 //! (a saturating loader). The property: no panic (debug build: no overflow either), rows top
@@ -23,10 +23,12 @@ use zrow::bsp::Bsp;
 use zrow::cullonly::CullOnly;
 use zrow::depthsort::DepthSort;
 use zrow::ordered::Ordered;
+use zrow::raster::RasterVertex;
 use zrow::raster::MAX_FACE_VERTICES;
 use zrow::warnock::Warnock;
 use zrow::{Affine, Camera, Config, Error, Face, Light, Mesh, ModelScene, Object, Projection};
-use zrow::{RenderError, Scalar, Scanline, ScreenScene, Vec3, ZBuffer, Q16_16, Q24_8};
+use zrow::{Faces, RenderError, Scalar, Scanline, ScreenScene, SnappedScene, Vec3, ZBuffer};
+use zrow::{Q16_16, Q24_8};
 
 /// Runs a generic item for every number format (adding a format is one line here).
 macro_rules! for_formats {
@@ -73,7 +75,10 @@ impl Input {
 }
 
 /// The error must be true of the input.
-fn check_error(e: Error, input: &Input, what: &str) {
+///
+/// A scene of snapped vertices (`snapped`) also refuses a vertex past the guard band (or not
+/// snappable) and a face of more than four corners that are not consecutive vertices.
+fn check_error(e: Error, input: &Input, what: &str, snapped: bool) {
     let face = |f: u32| {
         input
             .faces
@@ -97,6 +102,12 @@ fn check_error(e: Error, input: &Input, what: &str) {
             face(f);
         }
         Error::NotConvex { face: f } => assert!(face(f).len() >= 4, "{what}: {e:?}"),
+        Error::OutsideGuardBand { face: f } if snapped => {
+            face(f);
+        }
+        Error::Unsupported { .. } if snapped => {
+            assert!(input.faces.iter().any(|f| f.len() > 4), "{what}: {e:?}")
+        }
         other => panic!("{what}: {other:?} from a mesh without normals"),
     }
     if !input.config_ok() {
@@ -179,22 +190,43 @@ fn run<N: Scalar>(input: &Input) {
         },
     };
     let screen = ScreenScene { mesh };
-    let scene: &dyn zrow::Scene<N> = if input.model { &model } else { &screen };
+    // In screen mode, the same vertices snapped as well (a vertex that does not snap is put
+    // past the guard band), lent to the renderer.
+    let s = cfg.subpixel_bits as u32;
+    let snapped_vertices: Vec<RasterVertex<N>> = verts
+        .iter()
+        .map(|v| RasterVertex {
+            x: v.x.snap(s).unwrap_or(i32::MAX),
+            y: v.y.snap(s).unwrap_or(i32::MIN),
+            z: v.z,
+        })
+        .collect();
+    let snapped = SnappedScene {
+        vertices: &snapped_vertices,
+        faces: Faces::List(&faces),
+        subpixel_bits: cfg.subpixel_bits,
+    };
+    let scenes: Vec<(&dyn zrow::Scene<N>, bool)> = match input.model {
+        true => vec![(&model, false)],
+        false => vec![(&screen, false), (&snapped, true)],
+    };
     let mut ms = if input.width > 64 {
         methods::<N, 2048, 3>()
     } else {
         methods::<N, 64, 48>()
     };
-    for m in &mut ms {
-        let what = format!("{} {}", N::NAME, m.name);
-        let (result, cap) = m.outcome(scene, &cfg);
-        match result {
-            Ok(_) => assert_eq!(cap.rows_received, input.height as usize, "{what}"),
-            Err(RenderError::Scene(e)) => {
-                assert_eq!(cap.rows_received, 0, "{what}: {e:?} after rows");
-                check_error(e, input, &what);
+    for (scene, lent) in scenes {
+        for m in &mut ms {
+            let what = format!("{} {} (snapped: {lent})", N::NAME, m.name);
+            let (result, cap) = m.outcome(scene, &cfg);
+            match result {
+                Ok(_) => assert_eq!(cap.rows_received, input.height as usize, "{what}"),
+                Err(RenderError::Scene(e)) => {
+                    assert_eq!(cap.rows_received, 0, "{what}: {e:?} after rows");
+                    check_error(e, input, &what, lent);
+                }
+                Err(RenderError::Sink(())) => panic!("{what}: the capture never fails"),
             }
-            Err(RenderError::Sink(())) => panic!("{what}: the capture never fails"),
         }
     }
 }
