@@ -1123,7 +1123,7 @@ impl<
             if self.cover <= HEAVY_COVER * width as i32 || self.row.cue || !D::KEEPS {
                 self.sort_active(old);
             }
-            self.resolve_row(vertices, want_depth, stats);
+            self.resolve_row(want_depth, stats, vertices);
             let depth: &[N] = if want_depth {
                 if !(EXACT_DEPTH && K::WANTS_DEPTH) {
                     // (A sink that reads depth had the cue on each piece, before its exact
@@ -1143,7 +1143,7 @@ impl<
                 color: &self.intensity[..width],
                 depth,
             })?;
-            self.advance(vertices, y, cfg);
+            self.advance(y, cfg, vertices);
         }
         stats.edges = self.edges;
         Ok(())
@@ -1247,7 +1247,7 @@ impl<
     /// Retires what ends on row `y` and steps the rest to the next row: each edge one row
     /// down, or, where it ends, the next edge of its side; the span and its left depth.
     #[inline(never)]
-    fn advance(&mut self, vertices: &[RasterVertex<N>], y: i32, cfg: &Config) {
+    fn advance(&mut self, y: i32, cfg: &Config, vertices: &[RasterVertex<N>]) {
         let Sweep {
             active,
             free,
@@ -1333,9 +1333,9 @@ impl<
     #[inline(never)]
     fn resolve_row(
         &mut self,
-        vertices: &[RasterVertex<N>],
         want_depth: bool,
         stats: &mut FrameStats,
+        vertices: &[RasterVertex<N>],
     ) {
         let w = self.row.width;
         if self.cover > HEAVY_COVER * w && !self.row.cue && D::KEEPS {
