@@ -5,46 +5,12 @@
 
 mod common;
 
-use common::{color_of, every_method, painters, scenes, Capture, Polys, Rng};
+use common::{every_method, painters, scenes, Capture, Polys, Rng};
 use embedded_graphics_core::pixelcolor::Rgb565;
 use zrow::raster::RasterVertex;
 use zrow::{
-    Config, Error, Face, Faces, RenderError, Scalar, Scanline, SnappedScene, Vec3, Q16_16, Q24_8,
+    Config, Error, Face, Faces, RenderError, Scalar, Scanline, SnappedScene, Q16_16, Q24_8,
 };
-
-/// `p`'s polygons snapped for `cfg`, as a [`SnappedScene`] (polygon `i` in `color_of(i)`,
-/// each listing its own vertices in order, as [`Polys::with_scene`] does).
-fn with_snapped<N: Scalar, T>(
-    p: &Polys,
-    cfg: &Config,
-    f: impl FnOnce(&SnappedScene<'_, N>) -> T,
-) -> T {
-    let mut vertices = Vec::new();
-    let mut indices: Vec<Vec<u16>> = Vec::new();
-    for poly in &p.polys {
-        let mut face = Vec::new();
-        for v in poly {
-            face.push(vertices.len() as u16);
-            let v = Vec3::<N>::from_f32(*v).expect("test vertex fits format");
-            vertices.push(RasterVertex::snapped(&v, cfg.subpixel_bits).expect("snaps"));
-        }
-        indices.push(face);
-    }
-    let faces: Vec<Face> = indices
-        .iter()
-        .enumerate()
-        .map(|(i, f)| Face {
-            indices: f,
-            color: color_of(i),
-            alpha: 255,
-        })
-        .collect();
-    f(&SnappedScene {
-        vertices: &vertices,
-        faces: Faces::List(&faces),
-        subpixel_bits: cfg.subpixel_bits,
-    })
-}
 
 /// Scenes whose vertices all lie within the guard band (a snapped scene is not clipped).
 fn scenes_for(rng: &mut Rng, rounds: usize) -> Vec<Polys> {
@@ -70,7 +36,8 @@ fn same_as_screen<N: Scalar>(rounds: usize, bits: &[u8]) {
             for m in &mut methods {
                 // The snapped scene first: a renderer's buffer then holds the scene before,
                 // not these vertices.
-                let snapped = with_snapped::<N, _>(p, &cfg, |scene| m.outcome(scene, &cfg));
+                let snapped =
+                    p.with_snapped::<N, _>(cfg.subpixel_bits, |scene| m.outcome(scene, &cfg));
                 let screen = p.with_scene(|scene| m.outcome(scene, &cfg));
                 assert_eq!(
                     screen.0.as_ref().map(|r| r.0.polygons).ok(),
@@ -108,7 +75,7 @@ fn the_scan_line_method_reads_lent_vertices_without_a_buffer() {
     let mut lent = Box::new(Scanline::<Q16_16, 64, 0, 256, 256>::new());
     let mut buffered = Box::new(Scanline::<Q16_16, 64, 1024, 256, 256>::new());
     for p in scenes_for(&mut rng, 2) {
-        let (a, b, req) = with_snapped::<Q16_16, _>(&p, &cfg, |scene| {
+        let (a, b, req) = p.with_snapped::<Q16_16, _>(cfg.subpixel_bits, |scene| {
             let mut a = Capture::new(64, 48);
             let mut b = Capture::new(64, 48);
             lent.render(scene, &cfg, &mut a).unwrap();

@@ -117,29 +117,60 @@ impl Polys {
     /// Calls `f` with the polygons as a screen-space scene in format `N` (polygon `i` in
     /// [`color_of`]`(i)`).
     pub fn with_scene<N: Scalar, T>(&self, f: impl FnOnce(&ScreenScene<'_, N>) -> T) -> T {
+        let (verts, idx) = self.parts(|v: Vec3<N>| v);
+        let faces = faces_of(&idx);
+        f(&ScreenScene {
+            mesh: Mesh::new(&verts, &faces),
+        })
+    }
+
+    /// As [`Polys::with_scene`], the vertices snapped to `subpixel_bits` bits: the
+    /// [`zrow::SnappedScene`] of the same polygons.
+    pub fn with_snapped<N: Scalar, T>(
+        &self,
+        subpixel_bits: u8,
+        f: impl FnOnce(&zrow::SnappedScene<'_, N>) -> T,
+    ) -> T {
+        let (vertices, idx) = self.parts(|v: Vec3<N>| {
+            zrow::raster::RasterVertex::snapped(&v, subpixel_bits).expect("test vertex snaps")
+        });
+        let faces = faces_of(&idx);
+        f(&zrow::SnappedScene {
+            vertices: &vertices,
+            faces: zrow::Faces::List(&faces),
+            subpixel_bits,
+        })
+    }
+
+    /// Every polygon's vertices in format `N` as `vertex` makes them, in order, and each
+    /// polygon's indices into them.
+    fn parts<N: Scalar, V>(&self, vertex: impl Fn(Vec3<N>) -> V) -> (Vec<V>, Vec<Vec<u16>>) {
         let mut verts = Vec::new();
         let mut idx: Vec<Vec<u16>> = Vec::new();
         for p in &self.polys {
             let mut f = Vec::new();
             for v in p {
                 f.push(verts.len() as u16);
-                verts.push(Vec3::<N>::from_f32(*v).expect("test vertex fits format"));
+                verts.push(vertex(
+                    Vec3::<N>::from_f32(*v).expect("test vertex fits format"),
+                ));
             }
             idx.push(f);
         }
-        let faces: Vec<Face> = idx
-            .iter()
-            .enumerate()
-            .map(|(i, f)| Face {
-                indices: f,
-                color: color_of(i),
-                alpha: 255,
-            })
-            .collect();
-        f(&ScreenScene {
-            mesh: Mesh::new(&verts, &faces),
-        })
+        (verts, idx)
     }
+}
+
+/// Faces over `idx`, polygon `i` in [`color_of`]`(i)`.
+fn faces_of(idx: &[Vec<u16>]) -> Vec<Face<'_>> {
+    idx.iter()
+        .enumerate()
+        .map(|(i, f)| Face {
+            indices: f,
+            color: color_of(i),
+            alpha: 255,
+        })
+        .collect()
 }
 
 /// The exact reference's verdict for one pixel.
