@@ -499,6 +499,27 @@ fn corners_of<N: Scalar, I: MeshIndex>(
     corners: &mut [u32; MAX_POLYGON_VERTICES],
     no: u32,
 ) -> Result<(usize, bool), Error> {
+    let slots = buf.as_slice();
+    let b = base.unwrap_or(0);
+    let mut projected = base.is_some();
+    let n = face_corners(face, vertex_count, b, corners, no, |slot| {
+        projected &= slots.get(slot).is_some_and(|v| v.x != UNPROJECTED);
+        Ok(())
+    })?;
+    Ok((n, projected))
+}
+
+/// Checks a face's size and indices and writes its corners (`base` + index) into `corners`,
+/// handing each to `corner` once its index is checked; returns the corner count.
+#[inline(always)]
+fn face_corners<I: MeshIndex>(
+    face: &Face<'_, I>,
+    vertex_count: usize,
+    base: usize,
+    corners: &mut [u32; MAX_POLYGON_VERTICES],
+    no: u32,
+    mut corner: impl FnMut(usize) -> Result<(), Error>,
+) -> Result<usize, Error> {
     let n = face.indices.len();
     if n < 3 {
         return Err(Error::TooFewVertices { face: no });
@@ -506,9 +527,6 @@ fn corners_of<N: Scalar, I: MeshIndex>(
     if n > MAX_FACE_VERTICES {
         return Err(Error::TooManyVertices { face: no });
     }
-    let slots = buf.as_slice();
-    let mut projected = base.is_some();
-    let b = base.unwrap_or(0);
     for (c, &i) in corners.iter_mut().zip(face.indices) {
         let i = i.index();
         if i >= vertex_count {
@@ -517,10 +535,10 @@ fn corners_of<N: Scalar, I: MeshIndex>(
                 index: i as u32,
             });
         }
-        *c = (b + i) as u32;
-        projected &= slots.get(b + i).is_some_and(|v| v.x != UNPROJECTED);
+        *c = (base + i) as u32;
+        corner(base + i)?;
     }
-    Ok((n, projected))
+    Ok(n)
 }
 
 /// Twice the signed area of the polygon with these corners in the buffer (positive =
@@ -589,6 +607,14 @@ fn clip_guard_band<N: Scalar>(
     clip_plane(poly, |v| v.x <= hx, at_x(hx), face)?;
     clip_plane(poly, |v| v.y >= lo, at_y(lo), face)?;
     clip_plane(poly, |v| v.y <= hy, at_y(hy), face)
+}
+
+/// A screen-space scene's [`ViewDepth`]: depth is the view distance itself.
+fn screen_depth<N: Scalar>() -> ViewDepth<N> {
+    ViewDepth::Linear {
+        near: N::ZERO,
+        per_depth: N::ONE,
+    }
 }
 
 impl<N: Scalar, I: MeshIndex> Scene<N> for ScreenScene<'_, N, I> {
@@ -681,12 +707,8 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ScreenScene<'_, N, I> {
         Ok(())
     }
 
-    /// Screen-space depth is the view distance itself.
     fn view_depth(&self, _cfg: &Config) -> Option<ViewDepth<N>> {
-        Some(ViewDepth::Linear {
-            near: N::ZERO,
-            per_depth: N::ONE,
-        })
+        Some(screen_depth())
     }
 }
 
@@ -717,29 +739,16 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for SnappedScene<'_, N, I> {
         let mut corners = [0u32; MAX_POLYGON_VERTICES];
         for (no, face) in self.faces.iter().enumerate() {
             let no = no as u32;
-            let n = face.indices.len();
-            if n < 3 {
-                return Err(Error::TooFewVertices { face: no });
-            }
-            if n > MAX_FACE_VERTICES {
-                return Err(Error::TooManyVertices { face: no });
-            }
-            for (c, i) in corners.iter_mut().zip(face.indices) {
-                let i = i.index();
-                let Some(v) = vertices.get(i) else {
-                    return Err(Error::IndexOutOfRange {
-                        face: no,
-                        index: i as u32,
-                    });
-                };
-                if !(v.x >= lo && v.x <= hx && v.y >= lo && v.y <= hy) {
-                    return Err(Error::OutsideGuardBand { face: no });
+            let n = face_corners(&face, vertices.len(), 0, &mut corners, no, |i| {
+                // (In range: `face_corners` checked the index.)
+                match vertices.get(i) {
+                    Some(v) if !(v.x >= lo && v.x <= hx && v.y >= lo && v.y <= hy) => {
+                        Err(Error::OutsideGuardBand { face: no })
+                    }
+                    Some(v) if !v.z.is_finite() => Err(Error::NonFinite { face: no }),
+                    _ => Ok(()),
                 }
-                if !v.z.is_finite() {
-                    return Err(Error::NonFinite { face: no });
-                }
-                *c = i as u32;
-            }
+            })?;
             let corners = &corners[..n];
             if n > INDEXED_CORNERS && !(1..n).all(|k| corners[k] == corners[0] + k as u32) {
                 return Err(Error::Unsupported {
@@ -765,12 +774,8 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for SnappedScene<'_, N, I> {
         Some(self.vertices)
     }
 
-    /// Screen-space depth is the view distance itself.
     fn view_depth(&self, _cfg: &Config) -> Option<ViewDepth<N>> {
-        Some(ViewDepth::Linear {
-            near: N::ZERO,
-            per_depth: N::ONE,
-        })
+        Some(screen_depth())
     }
 }
 
