@@ -68,6 +68,16 @@ impl<N: Scalar> DepthPlane<N> {
             .step(self.dzdy, j.wrapping_sub(self.j_ref))
     }
 
+    /// Its depth at the centre of pixel (0, `j_ref`), the first step of [`Self::at`]: with the
+    /// gradients and `j_ref`, all that evaluating the plane needs. Stepped from there by rows
+    /// and then by columns it gives the bits of [`Self::at`] in the exact formats at every
+    /// pixel, in f32 its value at column 0 (elsewhere one more rounded step: within a few
+    /// units of the last place of the terms). The scan-line method's active entries keep only this.
+    #[inline]
+    pub fn column_0(&self) -> N {
+        self.z_ref.step(self.dzdx, 0i32.wrapping_sub(self.i_ref))
+    }
+
     /// Depth at the centre of pixel (`i`, `j`) without wrapping ([`Scalar::Unwrapped`]),
     /// extrapolated from pixel `anchor`, where [`Self::at`] must be in range (a sample the
     /// polygon covers): the plane's own value however far from the polygon, so the difference
@@ -240,30 +250,6 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     /// on the way, a depth that is in range at a sample inside the polygon comes out exact,
     /// and stepping one pixel at a time gives the same bits as stepping `n` at once.
     fn step(self, step: Self, n: i32) -> Self;
-
-    /// What evaluating a depth plane anywhere needs besides its two gradients, once its depth
-    /// at column 0 of one row is known: nothing in the exact formats (`()`, no bytes: wrapping
-    /// steps from that depth give the plane's own bits at every pixel); in f32, which evaluates
-    /// the plane afresh, its depth at column 0 of its reference row and that row. The
-    /// scan-line method's active entries keep only this and the gradients of a polygon's plane.
-    type PlaneRef: Copy + core::fmt::Debug;
-    /// A [`Scalar::PlaneRef`] with nothing set (all zero: a `static` renderer stays in `.bss`).
-    const PLANE_REF_ZERO: Self::PlaneRef;
-    /// [`Scalar::PlaneRef`] of `plane`.
-    fn plane_ref(plane: &DepthPlane<Self>) -> Self::PlaneRef;
-    /// The depth of the plane with gradients `dzdx`, `dzdy` and reference `r` at the centre of
-    /// pixel (`i`, `j`), `z_row` being its depth at column 0 of row `y`: the bits
-    /// [`DepthPlane::at`] gives — in f32 at column 0 (`i = 0`); elsewhere f32 takes one more
-    /// rounded step from there (within a few units of the last place of the terms).
-    fn plane_at(
-        r: &Self::PlaneRef,
-        dzdx: Self,
-        dzdy: Self,
-        z_row: Self,
-        y: i32,
-        i: i32,
-        j: i32,
-    ) -> Self;
 
     /// A plane's depth as [`DepthPlane::at_unwrapped`] gives it, for comparisons only.
     type Unwrapped: PartialOrd + Copy;
@@ -1025,23 +1011,6 @@ macro_rules! impl_fixed {
             fn step(self, step: Self, n: i32) -> Self {
                 self.wrapping_add(step.wrapping_mul_int(n))
             }
-            type PlaneRef = ();
-            const PLANE_REF_ZERO: () = ();
-            #[inline]
-            fn plane_ref(_: &DepthPlane<Self>) {}
-            #[inline]
-            fn plane_at(
-                _: &(),
-                dzdx: Self,
-                dzdy: Self,
-                z_row: Self,
-                y: i32,
-                i: i32,
-                j: i32,
-            ) -> Self {
-                // Exact modulo 2^32: the same bits from any pixel of the plane.
-                z_row.step(dzdy, j.wrapping_sub(y)).step(dzdx, i)
-            }
             type Unwrapped = i64;
             #[inline]
             fn unwrapped(p: &DepthPlane<Self>, (ai, aj): (i32, i32), i: i32, j: i32) -> i64 {
@@ -1320,33 +1289,6 @@ impl Scalar for f32 {
     #[inline]
     fn step(self, step: Self, n: i32) -> Self {
         self + step * n as f32
-    }
-    /// The plane's depth at column 0 of its reference row, and that row.
-    type PlaneRef = (f32, i32);
-    const PLANE_REF_ZERO: (f32, i32) = (0.0, 0);
-    #[inline]
-    fn plane_ref(p: &DepthPlane<Self>) -> (f32, i32) {
-        // The first step of `DepthPlane::at(0, j)`, done once.
-        (p.z_ref.step(p.dzdx, 0i32.wrapping_sub(p.i_ref)), p.j_ref)
-    }
-    #[inline]
-    fn plane_at(
-        &(z_col, j_ref): &(f32, i32),
-        dzdx: f32,
-        dzdy: f32,
-        _: f32,
-        _: i32,
-        i: i32,
-        j: i32,
-    ) -> f32 {
-        // Column 0: `DepthPlane::at`'s two steps, the first done already, so its bits;
-        // elsewhere one more rounded step (the affine cue's edge depths).
-        let z = z_col.step(dzdy, j.wrapping_sub(j_ref));
-        if i == 0 {
-            z
-        } else {
-            z.step(dzdx, i)
-        }
     }
     type Unwrapped = f32;
     #[inline]
@@ -1854,11 +1796,11 @@ mod tests {
         }
         assert!(fast > 30_000 && planes > 40_000, "{fast} fast of {planes}");
     }
-    /// [`Scalar::plane_at`] from a row's depth at column 0 equals [`DepthPlane::at`] bit for
-    /// bit (f32: at column 0, and within 4 units of the last place elsewhere), for planes of
-    /// every size, far from their reference pixel too (the scan-line keeps only the gradients
-    /// and [`Scalar::PlaneRef`] of a plane).
-    fn plane_at_equals_the_plane<N: Scalar>() {
+    /// [`DepthPlane::column_0`] stepped to row `j`, then to column `i`, equals
+    /// [`DepthPlane::at`] bit for bit (f32: in value at column 0, and within 4 units of the
+    /// last place elsewhere), for planes of every size, far from their reference pixel too (the
+    /// scan-line keeps only the gradients, `column_0` and `j_ref` of a plane).
+    fn column_0_steps_to_the_plane<N: Scalar>() {
         let mut seed = 0x2545_f491_4f6c_dd1du64;
         let mut next = |m: i32| {
             seed ^= seed << 13;
@@ -1879,11 +1821,12 @@ mod tests {
                 continue;
             };
             planes += 1;
-            let r = N::plane_ref(&p);
+            let z_col = p.column_0();
             for _ in 0..8 {
-                let (y, i, j) = (next(1 << 11), next(1 << 11), next(1 << 11));
+                let (i, j) = (next(1 << 11), next(1 << 11));
                 for i in [0, i] {
-                    let got = N::plane_at(&r, p.dzdx, p.dzdy, p.at(0, y), y, i, j);
+                    let row = z_col.step(p.dzdy, j.wrapping_sub(p.j_ref));
+                    let got = row.step(p.dzdx, i);
                     let want = p.at(i, j);
                     // Bit for bit, but in f32 off column 0: there within 4 units of the last
                     // place of the largest term.
@@ -1902,7 +1845,7 @@ mod tests {
                     let (g, w) = (got.to_f64(), want.to_f64());
                     assert!(
                         g.to_bits() == w.to_bits() || (g - w).abs() <= tolerance,
-                        "{} {p:?} at ({i}, {j}) from row {y}: {got:?} != {want:?}",
+                        "{} {p:?} at ({i}, {j}): {got:?} != {want:?}",
                         N::NAME
                     );
                 }
@@ -1953,10 +1896,10 @@ mod tests {
     }
 
     #[test]
-    fn plane_at_equals_the_plane_in_every_format() {
-        plane_at_equals_the_plane::<Q16_16>();
-        plane_at_equals_the_plane::<Q24_8>();
-        plane_at_equals_the_plane::<f32>();
+    fn column_0_steps_to_the_plane_in_every_format() {
+        column_0_steps_to_the_plane::<Q16_16>();
+        column_0_steps_to_the_plane::<Q24_8>();
+        column_0_steps_to_the_plane::<f32>();
     }
 
     fixed_tests!(q24_8, Q24_8, 8, "q24.8");

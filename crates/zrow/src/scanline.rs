@@ -191,11 +191,40 @@ struct Ring<'a, N, S: Slot> {
 }
 
 impl<N: Scalar> Active<N> {
-    /// Its plane's depth at the centre of pixel (`i`, `j`), `z_row` being set for row `y`: the
-    /// bits [`DepthPlane::at`] gives.
+    /// Its plane's depth at the centre of pixel (0, `j`), `y` being the current row (the
+    /// plane being set): stepped from `z_col`, which is at row `y` in the exact formats, at
+    /// row [`Self::j_ref`] in f32. The bits [`DepthPlane::at`] gives (in f32 its value).
+    #[inline]
+    fn column_0_at(&self, y: i32, j: i32) -> N {
+        let from = if N::EXACT_STEPS { y } else { self.j_ref() };
+        self.z_col.step(self.dzdy, j.wrapping_sub(from))
+    }
+
+    /// Its plane's depth at the centre of pixel (`i`, `j`), `y` being the current row: one
+    /// step along row `j` from [`Self::column_0_at`] (in f32 within a few units of the last
+    /// place of the terms of [`DepthPlane::at`]).
     #[inline]
     fn plane_at(&self, y: i32, i: i32, j: i32) -> N {
-        N::plane_at(&self.plane_ref, self.dzdx, self.dzdy, self.z_row, y, i, j)
+        self.column_0_at(y, j).step(self.dzdx, i)
+    }
+
+    /// f32: its plane's reference row ([`Active::spare`]).
+    #[inline]
+    fn j_ref(&self) -> i32 {
+        self.spare as i16 as i32
+    }
+
+    /// Its colour: kept in the entry in the exact formats, else the polygon table's (which
+    /// holds polygon `poly`, or the entry is not in use and the colour no matter).
+    #[inline]
+    fn color<S: Slot>(&self, polygons: &[Polygon<S>]) -> Rgb565 {
+        if N::EXACT_STEPS {
+            Rgb565::from(RawU16::new(self.spare))
+        } else {
+            polygons
+                .get(self.poly as usize)
+                .map_or(Rgb565::BLACK, |p| p.color)
+        }
     }
 
     /// This row's span's left end (unclamped; the span `xl..xr` may be empty).
@@ -240,7 +269,7 @@ impl<N: Scalar> Active<N> {
         (self.end[side] >> END_ROW) as i32 > y
     }
 
-    /// Whether the plane (`dzdx`, `dzdy`, `plane_ref`) and `z_row` are set.
+    /// Whether the plane (`dzdx`, `dzdy`, `z_col`, in f32 [`Self::j_ref`]) is set.
     #[inline]
     fn planed(&self) -> bool {
         self.end[RIGHT] & PLANED != 0
@@ -323,8 +352,8 @@ struct Walk {
     at: u8,
 }
 
-/// One entry of the active list: a polygon crossing the current row (52 bytes in fixed point;
-/// f32 keeps 8 more, to evaluate its plane afresh: tested). Its last row is not kept: it
+/// One entry of the active list: a polygon crossing the current row (52 bytes in a 32-bit
+/// format: tested). Its colour is not kept (the polygon table has it), nor its last row: it
 /// retires when its left edge, which covers every row it does, ends on that row
 /// ([`LAST_EDGE`]).
 #[derive(Clone, Copy, Debug)]
@@ -338,15 +367,19 @@ struct Active<N: Scalar> {
     /// and are drawn without one.
     dzdx: N,
     dzdy: N,
-    /// The rest of the plane, what f32 needs to evaluate it afresh ([`Scalar::PlaneRef`]):
-    /// nothing in the exact formats, which step from `z_row`.
-    plane_ref: N::PlaneRef,
-    /// The plane's depth at column 0 of the current row: a depth in this row is then one
-    /// multiply-add, [`depth_at`].
-    z_row: N,
+    /// The rest of the plane, its depth at column 0 of a row: in the exact formats of the
+    /// current row (stepped a row down as the sweep moves: wrapping steps give the plane's
+    /// own bits), in f32, which evaluates the plane afresh so that no error accumulates, of
+    /// its reference row ([`DepthPlane::column_0`]), the row's depths evaluated from there
+    /// when needed ([`Active::plane_at`]).
+    z_col: N,
+    /// f32: that reference row (within the guard band, so 16 bits: [`Active::j_ref`]). The
+    /// exact formats, which need none: the polygon's colour, so that painting a span needs no
+    /// lookup; f32 reads it from the polygon table ([`Active::color`]) and so keeps its
+    /// entry at 52 bytes.
+    spare: u16,
     /// Scene order: the index in the polygon table.
     poly: u16,
-    color: Rgb565,
 }
 
 /// The affine depth cue's state for one active polygon: the factors and their steps per row on
@@ -721,10 +754,9 @@ impl<
                     end: [0; 2],
                     dzdx: N::ZERO,
                     dzdy: N::ZERO,
-                    plane_ref: N::PLANE_REF_ZERO,
-                    z_row: N::ZERO,
+                    z_col: N::ZERO,
+                    spare: 0,
                     poly: 0,
-                    color: Rgb565::BLACK,
                 }; A],
                 cues: C::EMPTY,
                 shades: G::EMPTY,
@@ -1198,7 +1230,9 @@ impl<
         }
         self.edges += 2;
         a.poly = i;
-        a.color = p.color;
+        if N::EXACT_STEPS {
+            a.spare = RawU16::from(p.color).into_inner();
+        }
         if want_depth || cue.is_some() {
             let planes = Planes {
                 vertices,
@@ -1288,11 +1322,9 @@ impl<
                 found += next_edge(a, RIGHT, &below) as u32;
             }
             // Exact formats step (the same bits; unplaned, a harmless wrapping add to a value
-            // nobody reads, cheaper than the test); f32 evaluates, so no error accumulates.
+            // nobody reads, cheaper than the test); f32 evaluates the plane where it is read.
             if N::EXACT_STEPS {
-                a.z_row = a.z_row.step(a.dzdy, 1);
-            } else if a.planed() {
-                a.z_row = a.plane_at(y, 0, y + 1);
+                a.z_col = a.z_col.step(a.dzdy, 1);
             }
             if D::KEEPS {
                 cover += span_cover(a.xl(), a.xr(), w);
@@ -1447,7 +1479,7 @@ impl<
                     let _ = open.push(slot as u16);
                     planes.ensure(&mut active[slot]);
                     if front != NONE {
-                        match challenge(active, front, slot, cur) {
+                        match challenge(active, front, slot, cur, y) {
                             Some(u) => until = until.min(u),
                             None => front = NONE, // the newcomer is in front
                         }
@@ -1464,7 +1496,7 @@ impl<
                 (front, at, until) = if open.len() == 1 {
                     (open[0] as usize, 0, i32::MAX)
                 } else {
-                    establish(active, open, cur)
+                    establish(active, open, cur, y)
                 };
                 front_xr = active[front].xr();
                 stats.front_changes += 1;
@@ -1503,11 +1535,12 @@ impl<
             Some(i) => {
                 let run = &mut self.intensity[x0 as usize..x1 as usize];
                 let a = &self.active[i];
+                let color = a.color(&self.polygons);
                 if G::KEEPS {
                     let shade = self.shades.at(a.poly as usize);
-                    paint_run(run, a.color, shade, x0, self.row.y);
+                    paint_run(run, color, shade, x0, self.row.y);
                 } else {
-                    fill_run(run, a.color);
+                    fill_run(run, color);
                 }
             }
             None => {
@@ -1590,7 +1623,7 @@ impl<
                 // Checked here: the heavy rows meet each polygon once a row, its plane once.
                 planes.ensure(a);
             }
-            let dzdx = a.dzdx;
+            let (dzdx, row) = (a.dzdx, RowDepths::new(a, y));
             let rising = dzdx >= N::ZERO;
             for b in first..end.min(hiz.len()) {
                 let far_x = if rising {
@@ -1598,7 +1631,7 @@ impl<
                 } else {
                     b << shift
                 };
-                let far = depth_at(a, far_x as i32);
+                let far = row.at(far_x as i32);
                 if far < hiz[b] {
                     hiz[b] = far;
                 }
@@ -1613,7 +1646,7 @@ impl<
             if !a.planed() {
                 planes.ensure(a);
             }
-            let dzdx = a.dzdx;
+            let (dzdx, row) = (a.dzdx, RowDepths::new(a, y));
             let (x0, x1) = (x0 as usize, x1 as usize);
             // Depth is linear along the row: its least over a stretch is at the stretch's
             // left end if it grows to the right, else at its right end.
@@ -1625,14 +1658,15 @@ impl<
                     z0.step(dzdx, len - 1)
                 }
             };
-            let z_start = depth_at(a, x0 as i32);
+            let z_start = row.at(x0 as i32);
             if x1 - x0 <= 1 << shift {
                 // A short span (one or two blocks): tested pixel by pixel unless its blocks'
                 // bounds pass it over. The bounds are left as they are (still bounds: writes
                 // only lower depths).
                 let bound = max(hiz[x0 >> shift], &hiz[(x1 - 1) >> shift]);
                 if near_of(z_start, (x1 - x0) as i32) <= bound {
-                    test_pixels::<N, false>(a, x0, &mut depth[x0..x1], &mut owner[x0..x1]);
+                    let (d, o) = (&mut depth[x0..x1], &mut owner[x0..x1]);
+                    test_pixels::<N, false>(&row, x0, d, o);
                 }
                 continue;
             }
@@ -1663,7 +1697,7 @@ impl<
                 let near = if N::EXACT_STEPS {
                     near_of(z0, len)
                 } else {
-                    depth_at(a, if rising { b0 } else { b1 - 1 } as i32)
+                    row.at(if rising { b0 } else { b1 - 1 } as i32)
                 };
                 if near <= hiz[b] {
                     let whole = b0 == b << shift && b1 == ((b + 1) << shift).min(w);
@@ -1671,7 +1705,7 @@ impl<
                     if whole {
                         // The block's farthest depth now, from the pass itself (the span
                         // covers the block), if below its bound.
-                        if let Some(far) = test_pixels::<N, true>(a, b0, d, o) {
+                        if let Some(far) = test_pixels::<N, true>(&row, b0, d, o) {
                             if far < hiz[b] {
                                 hiz[b] = far;
                             }
@@ -1679,7 +1713,7 @@ impl<
                     } else {
                         // A span covering part of the block leaves the bound as it is: still
                         // a bound (depths only fall).
-                        test_pixels::<N, false>(a, b0, d, o);
+                        test_pixels::<N, false>(&row, b0, d, o);
                     }
                 }
                 if N::EXACT_STEPS {
@@ -1756,7 +1790,8 @@ impl<
                 y: self.row.y,
             };
             planes.ensure(&mut self.active[slot]);
-            fill_depth(&mut self.depth.parts().0[a0..a1], &self.active[slot], x0);
+            let y = self.row.y;
+            fill_depth(&mut self.depth.parts().0[a0..a1], &self.active[slot], y, x0);
             if self.row.exact() {
                 let poly = self.active[slot].poly as usize;
                 self.exact_depths(vertices, poly, a0, a1);
@@ -2033,30 +2068,30 @@ fn span_cover(xl: i32, xr: i32, w: i32) -> i32 {
 /// same pass), without, any value.
 #[inline]
 fn test_pixels<N: Scalar, const FAR: bool>(
-    a: &Active<N>,
+    row: &RowDepths<'_, N>,
     x0: usize,
     depth: &mut [N],
     owner: &mut [Rgb565],
 ) -> Option<N> {
     let raw = |c: Rgb565| RawU16::from(c).into_inner();
     let of = |v: u16| Rgb565::from(RawU16::new(v));
-    let (poly, dzdx) = (a.poly, a.dzdx);
+    let (poly, dzdx, z_row) = (row.a.poly, row.a.dzdx, row.z_row);
     // One length for both rows, so the indexing below needs no checks.
     let n = depth.len().min(owner.len());
     let (depth, owner) = (&mut depth[..n], &mut owner[..n]);
     let (mut wrote, mut most) = (false, N::ZERO);
-    let mut z = depth_at(a, x0 as i32);
     // f32 evaluates each pixel, `z_row + dzdx·x`; with an FPU x is counted in f32 (exact
     // below 2^24, so the same bits as `depth_at` without an integer conversion a pixel).
+    let mut z = row.at(x0 as i32);
     let mut xf = N::from_int(x0 as i32);
     for i in 0..n {
         // Exact formats step (the same bits); f32 evaluates each pixel.
         if !N::EXACT_STEPS {
             if FPU {
-                z = a.z_row.add(dzdx.mul(xf));
+                z = z_row.add(dzdx.mul(xf));
                 xf = xf.add(N::ONE);
             } else {
-                z = depth_at(a, (x0 + i) as i32);
+                z = z_row.step(dzdx, (x0 + i) as i32);
             }
         }
         let mut d = depth[i];
@@ -2087,11 +2122,41 @@ fn key_left(key: u32) -> i32 {
     (key >> 16) as i32 - 0x8000
 }
 
-/// Depth of an active polygon at the centre of pixel `x` of the current row (in fixed point
-/// the plane's own bits: wrapping steps are exact).
+/// Depth of an active polygon at the centre of pixel `x` of the current row `y` (in fixed
+/// point the plane's own bits: wrapping steps are exact).
 #[inline]
-fn depth_at<N: Scalar>(a: &Active<N>, x: i32) -> N {
-    a.z_row.step(a.dzdx, x)
+fn depth_at<N: Scalar>(a: &Active<N>, y: i32, x: i32) -> N {
+    a.plane_at(y, x, y)
+}
+
+/// [`depth_at`] for many columns of the current row: f32 evaluates the row's depth at column
+/// 0 once (`z_row`); the exact formats step from the entry's, which is the row's.
+struct RowDepths<'a, N: Scalar> {
+    a: &'a Active<N>,
+    y: i32,
+    z_row: N,
+}
+
+impl<'a, N: Scalar> RowDepths<'a, N> {
+    #[inline]
+    fn new(a: &'a Active<N>, y: i32) -> Self {
+        let z_row = if N::EXACT_STEPS {
+            N::ZERO // not read
+        } else {
+            a.column_0_at(y, y)
+        };
+        RowDepths { a, y, z_row }
+    }
+
+    /// The depth at the centre of pixel `x`.
+    #[inline]
+    fn at(&self, x: i32) -> N {
+        if N::EXACT_STEPS {
+            depth_at(self.a, self.y, x)
+        } else {
+            self.z_row.step(self.a.dzdx, x)
+        }
+    }
 }
 
 /// [`Scanline::sort_active`]'s sort of distinct keys, ascending: the first `old` (the keys
@@ -2198,23 +2263,24 @@ fn cue_span<N: Scalar>(intensity: &mut [Rgb565], a: &Active<N>, e: &EdgeCue<N>, 
 /// at a time in exact formats (the plane's bits), evaluated at each pixel in f32 (so a depth
 /// does not depend on where the row was split into pieces).
 #[inline]
-fn fill_depth<N: Scalar>(depth: &mut [N], a: &Active<N>, x0: i32) {
+fn fill_depth<N: Scalar>(depth: &mut [N], a: &Active<N>, y: i32, x0: i32) {
+    let (z_row, dzdx) = (a.column_0_at(y, y), a.dzdx);
     if N::EXACT_STEPS {
-        let mut z = depth_at(a, x0);
+        let mut z = z_row.step(dzdx, x0);
         for d in depth {
             *d = z;
-            z = z.step(a.dzdx, 1);
+            z = z.step(dzdx, 1);
         }
     } else if FPU {
         // x counted in f32, exact below 2^24: the bits of `depth_at` (see `test_pixels`).
         let mut xf = N::from_int(x0);
         for d in depth {
-            *d = a.z_row.add(a.dzdx.mul(xf));
+            *d = z_row.add(dzdx.mul(xf));
             xf = xf.add(N::ONE);
         }
     } else {
         for (x, d) in (x0..).zip(depth) {
-            *d = depth_at(a, x);
+            *d = z_row.step(dzdx, x);
         }
     }
 }
@@ -2234,7 +2300,8 @@ struct Planes<'a, N, S: Slot> {
 }
 
 impl<N: Scalar, S: Slot> Planes<'_, N, S> {
-    /// Sets `a`'s depth plane (and its depth at column 0 of the current row) if not yet set:
+    /// Sets `a`'s depth plane (in the exact formats its depth at column 0 of the current row)
+    /// if not yet set:
     /// the plane through its vertices in canonical order, the same bits whenever computed.
     #[inline]
     fn ensure(&self, a: &mut Active<N>) {
@@ -2253,8 +2320,13 @@ impl<N: Scalar, S: Slot> Planes<'_, N, S> {
             i_ref: 0,
             j_ref: 0,
         });
-        (a.dzdx, a.dzdy, a.plane_ref) = (plane.dzdx, plane.dzdy, N::plane_ref(&plane));
-        a.z_row = plane.at(0, self.y);
+        (a.dzdx, a.dzdy) = (plane.dzdx, plane.dzdy);
+        if N::EXACT_STEPS {
+            a.z_col = plane.at(0, self.y);
+        } else {
+            // Within the guard band (at most 2^13 pixels off the screen), so 16 bits.
+            (a.z_col, a.spare) = (plane.column_0(), plane.j_ref as i16 as u16);
+        }
         a.end[RIGHT] |= PLANED;
     }
 }
@@ -2369,30 +2441,38 @@ fn exact_of<N: Scalar, S: Slot>(ring: &Ring<'_, N, S>, s: u32) -> Option<N::Exac
     canonical_of(ring, |v| N::exact_plane(v, s))
 }
 
-/// Whether the polygon in slot `p` is visible over the one in slot `q` at column `x`: nearer,
-/// or as near and first in the scene. Both have their planes ([`Planes::ensure`]).
+/// Whether the polygon in slot `p` is visible over the one in slot `q` at column `x` of row
+/// `y`: nearer, or as near and first in the scene. Both have their planes
+/// ([`Planes::ensure`]).
 #[inline]
-fn beats<N: Scalar>(active: &[Active<N>], p: usize, q: usize, x: i32) -> bool {
-    let (zp, zq) = (depth_at(&active[p], x), depth_at(&active[q], x));
+fn beats<N: Scalar>(active: &[Active<N>], p: usize, q: usize, x: i32, y: i32) -> bool {
+    let (zp, zq) = (depth_at(&active[p], y, x), depth_at(&active[q], y, x));
     zp < zq || (zp == zq && active[p].poly < active[q].poly)
 }
 
-/// How long front `p` holds against `q` from column `x` on: `None` if `q` is in front at `x`,
-/// else the first column where `q` wins within the stretch both cover (`i32::MAX` if none).
-/// Depths are linear in x, so `p − q` changes sign at most once: check the stretch's far end,
-/// then bisect (in Q16.16 exactly: the steps are exact integer arithmetic).
-fn challenge<N: Scalar>(active: &[Active<N>], p: usize, q: usize, x: i32) -> Option<i32> {
-    if !beats(active, p, q, x) {
+/// How long front `p` holds against `q` from column `x` of row `y` on: `None` if `q` is in
+/// front at `x`, else the first column where `q` wins within the stretch both cover
+/// (`i32::MAX` if none). Depths are linear in x, so `p − q` changes sign at most once: check
+/// the stretch's far end, then bisect (in Q16.16 exactly: the steps are exact integer
+/// arithmetic).
+fn challenge<N: Scalar>(active: &[Active<N>], p: usize, q: usize, x: i32, y: i32) -> Option<i32> {
+    let (a, b) = (&active[p], &active[q]);
+    let (zp, zq) = (RowDepths::new(a, y), RowDepths::new(b, y));
+    let wins = |x: i32| {
+        let (u, v) = (zp.at(x), zq.at(x));
+        u < v || (u == v && a.poly < b.poly)
+    };
+    if !wins(x) {
         return None;
     }
-    let mut hi = active[p].xr().min(active[q].xr()) - 1;
-    if beats(active, p, q, hi) {
+    let mut hi = a.xr().min(b.xr()) - 1;
+    if wins(hi) {
         return Some(i32::MAX);
     }
     let mut lo = x; // p wins at lo, q at hi
     while hi - lo > 1 {
         let mid = lo + (hi - lo) / 2;
-        if beats(active, p, q, mid) {
+        if wins(mid) {
             lo = mid;
         } else {
             hi = mid;
@@ -2401,13 +2481,13 @@ fn challenge<N: Scalar>(active: &[Active<N>], p: usize, q: usize, x: i32) -> Opt
     Some(hi)
 }
 
-/// The polygon in front at `x` among the slots `open` (not empty): its slot, its index in
-/// `open`, and the first column where another open polygon overtakes it.
-fn establish<N: Scalar>(active: &[Active<N>], open: &[u16], x: i32) -> (usize, usize, i32) {
+/// The polygon in front at column `x` of row `y` among the slots `open` (not empty): its
+/// slot, its index in `open`, and the first column where another open polygon overtakes it.
+fn establish<N: Scalar>(active: &[Active<N>], open: &[u16], x: i32, y: i32) -> (usize, usize, i32) {
     // The visible one: least depth, then first in the scene.
     let mut at = 0;
     for i in 1..open.len() {
-        if beats(active, open[i] as usize, open[at] as usize, x) {
+        if beats(active, open[i] as usize, open[at] as usize, x, y) {
             at = i;
         }
     }
@@ -2415,7 +2495,7 @@ fn establish<N: Scalar>(active: &[Active<N>], open: &[u16], x: i32) -> (usize, u
     let mut until = i32::MAX;
     for &q in open {
         if q as usize != p {
-            if let Some(u) = challenge(active, p, q as usize, x) {
+            if let Some(u) = challenge(active, p, q as usize, x, y) {
                 until = until.min(u);
             }
         }
@@ -2527,11 +2607,11 @@ mod tests {
     /// The active entry's size, as its doc says: a field added or a layout that pads shows
     /// here, and in every frame's RAM.
     #[test]
-    fn active_entries_are_52_bytes_in_fixed_point() {
+    fn active_entries_are_52_bytes() {
         use core::mem::size_of;
         assert_eq!(size_of::<Active<Q16_16>>(), 52);
         assert_eq!(size_of::<Active<Q24_8>>(), 52);
-        assert_eq!(size_of::<Active<f32>>(), 60);
+        assert_eq!(size_of::<Active<f32>>(), 52);
     }
 
     /// `ram_bytes` is the struct's size at those capacities, but for the padding that aligns
