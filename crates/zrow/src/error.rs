@@ -81,6 +81,17 @@ pub enum Error {
         /// Face number.
         face: u32,
     },
+    /// A [`crate::Scene`] of one's own handed face `face` over on vertices that are neither
+    /// the frame's vertex buffer nor the scene's lent vertices
+    /// ([`crate::scene::Polygon::cached`] false, or said but not so), though the buffer had
+    /// room: a renderer that keeps polygons for the whole frame by vertex slot (the scan-line
+    /// method) cannot keep it. Write its vertices with
+    /// [`crate::scene::VertexBuffer::push`], or lend them all
+    /// ([`crate::Scene::lent_vertices`]).
+    NotInFrame {
+        /// Face number.
+        face: u32,
+    },
     /// A mesh has `normals` precomputed normals for its `faces` faces: give exactly one per
     /// face, or none (then model mode computes them).
     Normals {
@@ -166,7 +177,8 @@ impl Error {
             | Error::TooManyVertices { face }
             | Error::NonFinite { face }
             | Error::OutsideGuardBand { face }
-            | Error::NotConvex { face } => Some(face),
+            | Error::NotConvex { face }
+            | Error::NotInFrame { face } => Some(face),
             _ => None,
         }
     }
@@ -204,6 +216,11 @@ impl core::fmt::Display for Error {
                 crate::raster::GUARD_BAND
             ),
             Error::NotConvex { face } => write!(f, "face {face}: not convex"),
+            Error::NotInFrame { face } => write!(
+                f,
+                "face {face}: handed over on vertices outside the frame's vertex buffer and the \
+                 scene's lent vertices, which a renderer that keeps polygons by slot cannot keep"
+            ),
             Error::Normals { faces, normals } => write!(
                 f,
                 "mesh has {normals} normals for {faces} faces: give one per face or none"

@@ -863,7 +863,8 @@ impl<
         self.cover = 0;
         self.free = 0;
         self.sorted.clear();
-        let (mut polys, mut uncached) = (0u32, false);
+        // The first polygon handed over outside the frame's vertices, if any.
+        let (mut polys, mut uncached) = (0u32, None);
         let (table, shades) = (&mut self.polygons, &mut self.shades);
         let mut smooth = false;
         // Level 255 in the format: a flat polygon's intensity plane (only if planes are kept).
@@ -938,7 +939,9 @@ impl<
                 && (n <= INDEXED_CORNERS
                     || (1..n).all(|k| poly.corners[k] == poly.corners[0].wrapping_add(k as u32)));
             // Past a capacity, keep counting so the error can say what the scene needs.
-            uncached |= !cached;
+            if !cached && uncached.is_none() {
+                uncached = Some(poly.face);
+            }
             smooth |= poly.intensity.is_some();
             if cached && table.len() < P {
                 if G::KEEPS {
@@ -984,8 +987,13 @@ impl<
         if polys as usize > P {
             return Err(over(Table::Polygons, polys, P));
         }
-        if uncached || buf.needed() > capacity {
+        // Geometry hands polygons over in scratch when the buffer is full: too small, then;
+        // with room, a scene of its own handed them so.
+        if buf.needed() > capacity {
             return Err(over(Table::Vertices, buf.needed() as u32, capacity));
+        }
+        if let Some(face) = uncached {
+            return Err(Error::NotInFrame { face });
         }
         let max_active = self.max_active(lent.unwrap_or(buf.as_slice()), cfg, counted)?;
         self.bucket(cfg);

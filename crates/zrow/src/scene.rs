@@ -789,7 +789,8 @@ pub struct Polygon<'a, N> {
     pub corners: &'a [u32],
     /// Whether `vertices` is the frame's buffer or the scene's lent vertices, so that a
     /// renderer may keep `corners` for the rest of the frame (else it must copy what it
-    /// keeps).
+    /// keeps; the scan-line method, which keeps polygons by slot, refuses such a polygon
+    /// when its buffer has room: [`crate::Error::NotInFrame`]).
     pub cached: bool,
     /// Twice its signed area on the sub-pixel grid, exact (positive: clockwise on the display),
     /// as [`crate::raster::signed_area2`] gives it: geometry has it from culling.

@@ -208,3 +208,58 @@ fn a_snapped_scene_out_of_its_bounds_is_a_typed_error() {
         assert!(cap.drawn() > 100, "{}", m.name);
     }
 }
+
+/// A scene of one's own that lends its vertices but hands a polygon over on others (here its
+/// second, pushed into the frame's buffer instead): the scan-line method, which keeps
+/// polygons by slot of the one slice it reads, refuses the frame before any row, naming that
+/// face (not a capacity: the buffer has room).
+#[test]
+fn a_lending_scene_that_hands_a_polygon_over_elsewhere_is_refused() {
+    struct Lends {
+        vertices: Vec<RasterVertex<Q16_16>>,
+    }
+    impl zrow::Scene<Q16_16> for Lends {
+        fn polygons(
+            &self,
+            _: &Config,
+            buffer: &mut zrow::scene::VertexBuffer<'_, Q16_16>,
+            f: &mut dyn FnMut(&zrow::scene::Polygon<'_, Q16_16>) -> Result<(), Error>,
+        ) -> Result<(), Error> {
+            let area2 = zrow::raster::signed_area2(&self.vertices);
+            let polygon = |vertices, corners, face| zrow::scene::Polygon {
+                vertices,
+                corners,
+                cached: true,
+                area2,
+                color: Rgb565::new(31, 0, 0),
+                intensity: None,
+                alpha: 255,
+                face,
+            };
+            f(&polygon(&self.vertices, &[0, 1, 2], 0))?;
+            let start = buffer.push(&self.vertices).ok_or(Error::BadConfig)?;
+            let corners = [start, start + 1, start + 2];
+            f(&polygon(buffer.as_slice(), &corners, 1))
+        }
+        fn lent_vertices(&self) -> Option<&[RasterVertex<Q16_16>]> {
+            Some(&self.vertices)
+        }
+    }
+    let cfg = Config::screen(64, 48);
+    let s = cfg.subpixel_bits as u32;
+    let v = |x: i32, y: i32| RasterVertex {
+        x: x << s,
+        y: y << s,
+        z: Q16_16::from_num(1),
+    };
+    let scene = Lends {
+        vertices: vec![v(1, 1), v(30, 2), v(3, 30)],
+    };
+    let mut r = Box::new(Scanline::<Q16_16, 64, 16, 16, 16>::new());
+    let mut cap = Capture::new(64, 48);
+    assert_eq!(
+        r.render(&scene, &cfg, &mut cap),
+        Err(RenderError::Scene(Error::NotInFrame { face: 1 }))
+    );
+    assert_eq!(cap.rows_received, 0);
+}
