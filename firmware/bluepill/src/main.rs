@@ -7,7 +7,8 @@
 //! fit here: a 240×240 RGB565 frame is 112.5 KB.
 //!
 //! It shows the demo scenes that fit its RAM: the interlocked rings and the cube (the
-//! 1,000-triangle torus needs a renderer of 21.5 KB; README, "The Blue Pill").
+//! 1,000-triangle torus's renderer would leave the stack too little room; README, "The Blue
+//! Pill", has the figures).
 //!
 //! Wiring (README): SCK PA5, MOSI PA7, CS PA4, DC PA3, RST PA2, backlight PA1 — the F411's.
 #![no_std]
