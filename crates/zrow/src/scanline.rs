@@ -1527,7 +1527,7 @@ impl<
 
     /// Fills columns `x0..x1` of the row from the polygon in `slot` (its colour, and its depth
     /// when someone reads it), or with the background.
-    #[inline]
+    #[inline(always)]
     fn paint(
         &mut self,
         vertices: &[RasterVertex<N>],
