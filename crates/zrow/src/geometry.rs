@@ -948,13 +948,7 @@ impl<N: Scalar> Projector<N> {
     #[inline]
     fn inside(&self, v: &ClipV<N>) -> bool {
         let d = self.d(v);
-        let (gxd, gyd) = (self.gx.mul(d), self.gy.mul(d));
-        v.w >= self.near
-            && v.w <= self.far
-            && v.x.sub(gxd) <= N::ZERO
-            && v.x.add(gxd) >= N::ZERO
-            && v.y.sub(gyd) <= N::ZERO
-            && v.y.add(gyd) >= N::ZERO
+        v.w >= self.near && v.w <= self.far && v.x.within(self.gx, d) && v.y.within(self.gy, d)
     }
 
     /// Clips a polygon in clip space: near, far, then the four guard-band planes.

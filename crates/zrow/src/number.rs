@@ -138,6 +138,14 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     /// Multiplication, rounded to nearest (fixed point: within half a unit of the last place;
     /// ties round up) and saturating.
     fn mul(self, o: Self) -> Self;
+    /// Whether `self` lies within `±g·d`: `self.sub(g.mul(d)) <= 0 && self.add(g.mul(d)) >= 0`,
+    /// the guard band's test of a clip-space coordinate. Fixed point gives the same answer
+    /// without rounding or saturating anything (one product and one comparison).
+    #[inline]
+    fn within(self, g: Self, d: Self) -> bool {
+        let gd = g.mul(d);
+        self.sub(gd) <= Self::ZERO && self.add(gd) >= Self::ZERO
+    }
     /// Division, rounded to nearest (fixed point: ties away from zero); `None` when dividing by
     /// zero or when the quotient is out of range.
     fn div(self, o: Self) -> Option<Self>;
@@ -769,6 +777,16 @@ macro_rules! impl_fixed {
                 let f = $t::FRAC_NBITS;
                 let p = self.to_bits() as i64 * o.to_bits() as i64;
                 $t::from_bits(sat_i64((p + (1 << (f - 1))) >> f))
+            }
+            #[inline]
+            fn within(self, g: Self, d: Self) -> bool {
+                // With q = ⌊Q/2^f⌋, Q = g·d + 2^(f−1) (`mul` before it saturates): saturating
+                // keeps signs, so the default's test is −sat(q) ≤ x ≤ sat(q); for x ≠ MIN that
+                // is |x| ≤ q, that is |x|·2^f ≤ Q, and for x = MIN it fails (−x > MAX).
+                let f = $t::FRAC_NBITS;
+                let q = g.to_bits() as i64 * d.to_bits() as i64 + (1 << (f - 1));
+                let x = self.to_bits();
+                x != i32::MIN && ((x.unsigned_abs() as i64) << f) <= q
             }
             #[inline]
             fn div(self, o: Self) -> Option<Self> {
@@ -1893,6 +1911,61 @@ mod tests {
         }
         assert_eq!(f32::from_ratio(1, 0), 0.0);
         assert_eq!(f32::from_int(-12), -12.0);
+    }
+
+    /// [`Scalar::within`] answers as its definition does (`x − g·d ≤ 0` and `x + g·d ≥ 0`,
+    /// each rounded and saturated), at the ends of the range and at random, in every format.
+    #[test]
+    fn within_is_its_definition() {
+        fn check<N: Scalar>(bits: impl Fn(i32) -> N) {
+            let mut seed = 0x1234_5678_9abc_def1u64;
+            let mut next = || {
+                seed ^= seed << 13;
+                seed ^= seed >> 7;
+                seed ^= seed << 17;
+                seed
+            };
+            let edges = [
+                i32::MIN,
+                i32::MIN + 1,
+                -65_537,
+                -65_536,
+                -1,
+                0,
+                1,
+                2,
+                127,
+                128,
+                65_535,
+                65_536,
+                65_537,
+                i32::MAX - 1,
+                i32::MAX,
+            ];
+            let mut values = [0i32; 75];
+            values[..edges.len()].copy_from_slice(&edges);
+            for v in &mut values[edges.len()..] {
+                let r = next();
+                // Every magnitude: shifted down by 0..=31 bits.
+                *v = (r as i32) >> ((r >> 32) % 32);
+            }
+            let mut inside = 0;
+            for &x in &values {
+                for &g in &values {
+                    for &d in &values {
+                        let (x, g, d) = (bits(x), bits(g), bits(d));
+                        let gd = g.mul(d);
+                        let want = x.sub(gd) <= N::ZERO && x.add(gd) >= N::ZERO;
+                        assert_eq!(x.within(g, d), want, "{} {x:?} {g:?} {d:?}", N::NAME);
+                        inside += want as u32;
+                    }
+                }
+            }
+            assert!(inside > 10_000, "{} {inside}", N::NAME);
+        }
+        check(Q16_16::from_bits);
+        check(Q24_8::from_bits);
+        check(|v: i32| v as f32 / 65_536.0);
     }
 
     #[test]
