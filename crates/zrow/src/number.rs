@@ -1413,6 +1413,24 @@ impl Scalar for f32 {
     }
 }
 
+/// The tests' fixed-seed generator: Marsaglia's xorshift (13, 7, 17), the new state.
+#[cfg(test)]
+pub(crate) fn xorshift64(seed: &mut u64) -> u64 {
+    *seed ^= *seed << 13;
+    *seed ^= *seed >> 7;
+    *seed ^= *seed << 17;
+    *seed
+}
+
+/// [`xorshift64`]'s 32-bit form (13, 17, 5).
+#[cfg(test)]
+pub(crate) fn xorshift32(seed: &mut u32) -> u32 {
+    *seed ^= *seed << 13;
+    *seed ^= *seed >> 17;
+    *seed ^= *seed << 5;
+    *seed
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1605,12 +1623,7 @@ mod tests {
                     // degenerate ones), every shift: the same normal as `face_normal` of the
                     // positions `from_compact` gives.
                     let mut seed = 0x2545_f491u32;
-                    let mut next = || {
-                        seed ^= seed << 13;
-                        seed ^= seed >> 17;
-                        seed ^= seed << 5;
-                        seed
-                    };
+                    let mut next = || crate::number::xorshift32(&mut seed);
                     let (mut fast, mut none) = (0, 0);
                     for k in 0..30_000u32 {
                         let bits = 1 + k % 16;
@@ -1778,9 +1791,7 @@ mod tests {
     fn plane_in_64_bits_equals_the_128_bit_one() {
         let mut seed = 0x853c_49e6_748f_ea9bu64;
         let mut next = |m: i64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
+            let seed = crate::number::xorshift64(&mut seed);
             (seed % (2 * m as u64 + 1)) as i64 - m
         };
         let (mut fast, mut planes) = (0, 0);
@@ -1821,9 +1832,7 @@ mod tests {
     fn column_0_steps_to_the_plane<N: Scalar>() {
         let mut seed = 0x2545_f491_4f6c_dd1du64;
         let mut next = |m: i32| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
+            let seed = crate::number::xorshift64(&mut seed);
             (seed % (2 * m as u64 + 1)) as i32 - m
         };
         let mut planes = 0;
@@ -1879,9 +1888,7 @@ mod tests {
         fn fixed<N: Scalar>(frac: u32) {
             let mut seed = 0x9e37_79b9_7f4a_7c15u64;
             let mut next = |m: u64| {
-                seed ^= seed << 13;
-                seed ^= seed >> 7;
-                seed ^= seed << 17;
+                let seed = crate::number::xorshift64(&mut seed);
                 seed % m
             };
             for k in 0..100_000 {
@@ -1919,12 +1926,7 @@ mod tests {
     fn within_is_its_definition() {
         fn check<N: Scalar>(bits: impl Fn(i32) -> N) {
             let mut seed = 0x1234_5678_9abc_def1u64;
-            let mut next = || {
-                seed ^= seed << 13;
-                seed ^= seed >> 7;
-                seed ^= seed << 17;
-                seed
-            };
+            let mut next = || crate::number::xorshift64(&mut seed);
             let edges = [
                 i32::MIN,
                 i32::MIN + 1,

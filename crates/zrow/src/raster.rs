@@ -793,9 +793,7 @@ mod tests {
     /// A fixed xorshift sequence: each call draws a value in `−m..=m`.
     fn uniform(mut seed: u64) -> impl FnMut(i64) -> i64 {
         move |m: i64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
+            let seed = crate::number::xorshift64(&mut seed);
             (seed % (2 * m as u64 + 1)) as i64 - m
         }
     }

@@ -2560,12 +2560,7 @@ mod tests {
     #[test]
     fn sort_keys_sorts() {
         let mut seed = 0x9e37_79b9u32;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 17;
-            seed ^= seed << 5;
-            seed
-        };
+        let mut next = || crate::number::xorshift32(&mut seed);
         for n in [0usize, 1, 2, 3, 4, 9, 65, 300] {
             for sorted_head in [0, n / 2, n.saturating_sub(3), n] {
                 // Distinct keys: a left end in the high half, a distinct slot in the low.
@@ -2593,9 +2588,7 @@ mod tests {
         assert_eq!(core::mem::size_of::<Polygon<u16>>(), 12);
         let mut seed = 0x2545_f491u32;
         let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 17;
-            seed ^= seed << 5;
+            let seed = crate::number::xorshift32(&mut seed);
             seed % 4096
         };
         for _ in 0..10_000 {

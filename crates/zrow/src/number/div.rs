@@ -221,13 +221,7 @@ fn rounded(q: u32, r: u32, d: u32, negative: bool) -> Option<i32> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn rng(seed: &mut u64) -> u64 {
-        *seed ^= *seed << 13;
-        *seed ^= *seed >> 7;
-        *seed ^= *seed << 17;
-        *seed
-    }
+    use crate::number::xorshift64;
 
     #[test]
     fn divmod_equals_the_native_division() {
@@ -245,12 +239,12 @@ mod tests {
             u32::MAX,
         ];
         for _ in 0..200_000 {
-            let r = rng(&mut seed);
+            let r = xorshift64(&mut seed);
             // Numerators and divisors of every width, and the boundary values.
-            let n = r >> (rng(&mut seed) % 64);
-            let d = match rng(&mut seed) % 4 {
+            let n = r >> (xorshift64(&mut seed) % 64);
+            let d = match xorshift64(&mut seed) % 4 {
                 0 => edges[(r % edges.len() as u64) as usize],
-                _ => ((rng(&mut seed) as u32) >> (rng(&mut seed) % 32)).max(1),
+                _ => ((xorshift64(&mut seed) as u32) >> (xorshift64(&mut seed) % 32)).max(1),
             };
             assert_eq!(
                 divmod_digits(n, d),
@@ -277,15 +271,15 @@ mod tests {
     fn reciprocal_division_equals_the_native_one() {
         let mut seed = 0x7f4a_7c15_9e37_79b9u64;
         for _ in 0..100_000 {
-            let d = match rng(&mut seed) % 4 {
-                0 => 1 + rng(&mut seed) % 7,
-                1 => u32::MAX as u64 - rng(&mut seed) % 3,
-                2 => rng(&mut seed) >> (rng(&mut seed) % 64) | 1,
-                _ => (rng(&mut seed) as u32 >> (rng(&mut seed) % 32)).max(1) as u64,
+            let d = match xorshift64(&mut seed) % 4 {
+                0 => 1 + xorshift64(&mut seed) % 7,
+                1 => u32::MAX as u64 - xorshift64(&mut seed) % 3,
+                2 => xorshift64(&mut seed) >> (xorshift64(&mut seed) % 64) | 1,
+                _ => (xorshift64(&mut seed) as u32 >> (xorshift64(&mut seed) % 32)).max(1) as u64,
             };
             let r = Recip::new(d);
             for n in [
-                rng(&mut seed) >> (rng(&mut seed) % 64),
+                xorshift64(&mut seed) >> (xorshift64(&mut seed) % 64),
                 u64::MAX,
                 d - 1,
                 d,
@@ -314,9 +308,13 @@ mod tests {
         assert_eq!(div_round(-7, 3), -2);
         let mut seed = 0x2545_f491_4f6c_dd1du64;
         for _ in 0..200_000 {
-            let n = (rng(&mut seed) as i64) >> (rng(&mut seed) % 63);
-            let d = ((rng(&mut seed) as i64) >> (rng(&mut seed) % 63)).max(1);
-            let d = if rng(&mut seed) % 2 == 0 { d } else { -d };
+            let n = (xorshift64(&mut seed) as i64) >> (xorshift64(&mut seed) % 63);
+            let d = ((xorshift64(&mut seed) as i64) >> (xorshift64(&mut seed) % 63)).max(1);
+            let d = if xorshift64(&mut seed) % 2 == 0 {
+                d
+            } else {
+                -d
+            };
             assert_eq!(div_round(n, d), exact(n, d), "{n} / {d}");
         }
     }
@@ -331,9 +329,9 @@ mod tests {
             let n = match k % 7 {
                 0 => i64::MAX,
                 1 => i64::MIN + 1,
-                _ => (rng(&mut seed) as i64) >> (rng(&mut seed) % 64),
+                _ => (xorshift64(&mut seed) as i64) >> (xorshift64(&mut seed) % 64),
             };
-            let d = ((rng(&mut seed) as u32) >> (rng(&mut seed) % 32)).max(1);
+            let d = ((xorshift64(&mut seed) as u32) >> (xorshift64(&mut seed) % 32)).max(1);
             let want = div_round(n, d as i64);
             match div_round_small_divisor(n, d) {
                 Some(q) => {
@@ -346,8 +344,8 @@ mod tests {
         assert!(taken > 100_000, "{taken}");
         // A numerator shifted by a format's fractional bits: the same as unshifted.
         for k in 0..200_000u32 {
-            let n = (rng(&mut seed) as i32) >> (rng(&mut seed) % 32);
-            let d = ((rng(&mut seed) as u32) >> (rng(&mut seed) % 32)).max(1);
+            let n = (xorshift64(&mut seed) as i32) >> (xorshift64(&mut seed) % 32);
+            let d = ((xorshift64(&mut seed) as u32) >> (xorshift64(&mut seed) % 32)).max(1);
             let shift = [8, 16, 0, 24][(k % 4) as usize];
             let want = div_round_small_divisor((n as i64) << shift, d);
             assert_eq!(div_round_shifted(n, shift, d), want, "{n} << {shift} / {d}");
