@@ -2103,6 +2103,8 @@ fn test_pixels<N: Scalar, const FAR: bool>(
             }
         }
         let mut d = depth[i];
+        // `nearer`, written out: the owner is read only on a tie (measured: 3 % of
+        // random400 when read every pixel).
         if z < d || (z == d && poly < raw(owner[i])) {
             (depth[i], owner[i], wrote) = (z, of(poly), true);
             d = z;
@@ -2449,13 +2451,19 @@ fn exact_of<N: Scalar, S: Slot>(ring: &Ring<'_, N, S>, s: u32) -> Option<N::Exac
     canonical_of(ring, |v| N::exact_plane(v, s))
 }
 
+/// The visibility rule: a polygon at depth `zp`, number `p` (scene order), is visible over one
+/// at depth `zq`, number `q`, if nearer, or as near and first in the scene.
+#[inline]
+fn nearer<N: Scalar>((zp, p): (N, u16), (zq, q): (N, u16)) -> bool {
+    zp < zq || (zp == zq && p < q)
+}
+
 /// Whether the polygon in slot `p` is visible over the one in slot `q` at column `x` of row
-/// `y`: nearer, or as near and first in the scene. Both have their planes
-/// ([`Planes::ensure`]).
+/// `y` ([`nearer`]). Both have their planes ([`Planes::ensure`]).
 #[inline]
 fn beats<N: Scalar>(active: &[Active<N>], p: usize, q: usize, x: i32, y: i32) -> bool {
-    let (zp, zq) = (depth_at(&active[p], y, x), depth_at(&active[q], y, x));
-    zp < zq || (zp == zq && active[p].poly < active[q].poly)
+    let (a, b) = (&active[p], &active[q]);
+    nearer((depth_at(a, y, x), a.poly), (depth_at(b, y, x), b.poly))
 }
 
 /// How long front `p` holds against `q` from column `x` of row `y` on: `None` if `q` is in
@@ -2466,10 +2474,7 @@ fn beats<N: Scalar>(active: &[Active<N>], p: usize, q: usize, x: i32, y: i32) ->
 fn challenge<N: Scalar>(active: &[Active<N>], p: usize, q: usize, x: i32, y: i32) -> Option<i32> {
     let (a, b) = (&active[p], &active[q]);
     let (zp, zq) = (RowDepths::new(a, y), RowDepths::new(b, y));
-    let wins = |x: i32| {
-        let (u, v) = (zp.at(x), zq.at(x));
-        u < v || (u == v && a.poly < b.poly)
-    };
+    let wins = |x: i32| nearer((zp.at(x), a.poly), (zq.at(x), b.poly));
     if !wins(x) {
         return None;
     }
