@@ -40,7 +40,8 @@ pub struct FrameStats {
     pub edges: u32,
     /// Most polygons active in one row (scan-line).
     pub max_active: u32,
-    /// Times a row's front polygon was sought among the open ones (scan-line).
+    /// Times a row's front polygon was sought among the open ones where spans overlap
+    /// (scan-line; a span that meets no other is painted without a search, and not counted).
     pub front_changes: u32,
     /// Of those, how many were at an intersection (scan-line).
     pub crossings: u32,

@@ -1382,7 +1382,19 @@ impl<
             self.resolve_by_depth(vertices);
             return;
         }
+        // Spans that follow one another apart (a mesh's rows nearly always) are painted as
+        // they come; the sweep takes over where one meets the one before it.
         let (mut cur, mut k) = (0i32, 0usize);
+        if !self.row.more && !G::KEEPS {
+            match self.paint_apart() {
+                Ok(painted_to) => {
+                    let from = self.sorted.first().map_or(w, |&key| key_left(key).max(0));
+                    self.row.fresh = (from, painted_to);
+                    return;
+                }
+                Err(resume) => (cur, k) = resume,
+            }
+        }
         let painted_to = loop {
             if cur >= w {
                 break cur;
@@ -1422,7 +1434,6 @@ impl<
             if alone {
                 k = j; // the spans passed over are empty
                 let end = xr.min(w);
-                stats.front_changes += 1;
                 self.paint(vertices, cur, end, Some(slot), want_depth);
                 cur = end;
             } else {
@@ -1436,6 +1447,60 @@ impl<
         // background this row and are only repainted with it on the next).
         let from = self.sorted.first().map_or(w, |&key| key_left(key).max(0));
         self.row.fresh = (from, painted_to);
+    }
+
+    /// Paints the row's spans in the order of the keys while each begins at or after the end of
+    /// the one before (none meets another: each is the visible surface wherever it lies), the
+    /// columns between them with the background, as the sweep would; returns where the last
+    /// span painted ends. `Err((cur, k))`: a span meets the one before it, painted from `cur`
+    /// and taken at key `k` — the sweep resumes there (columns before `cur` are done, and it
+    /// repaints every column from `cur` on).
+    #[inline(never)]
+    fn paint_apart(&mut self) -> Result<i32, (i32, usize)> {
+        let Sweep {
+            sorted,
+            active,
+            intensity,
+            polygons,
+            row,
+            ..
+        } = self;
+        // (Within the colour row: `Config::validate` checked the width.)
+        let w = row.width.min(W as i32);
+        let span = |key: u32| active.get(key as u16 as usize);
+        // Painted up to `cur`; the last span with columns ends at `end` (unclamped).
+        let (mut cur, mut end) = (0i32, i32::MIN);
+        let mut keys = sorted.iter();
+        while let Some(&key) = keys.next() {
+            let Some(a) = span(key) else {
+                continue; // cannot happen: keys hold occupied slots
+            };
+            let (xl, xr) = (a.xl(), a.xr());
+            if xr <= xl {
+                continue;
+            }
+            if xl < end {
+                // Meets the span before.
+                let taken = sorted.len() - keys.len() - 1;
+                return Err(resume_at(sorted.get(..taken).unwrap_or(&[]), active, w));
+            }
+            let (x0, x1) = (xl.max(0), xr.min(w));
+            if x0 >= w {
+                break; // it and the rest lie beyond the row
+            }
+            end = xr;
+            if x0 < x1 {
+                if cur < x0 {
+                    fill_background(intensity, row.stale, row.background, cur, x0);
+                }
+                if let Some(run) = intensity.get_mut(x0 as usize..x1 as usize) {
+                    fill_run(run, a.color(polygons));
+                }
+                cur = x1;
+            }
+        }
+        fill_background(intensity, row.stale, row.background, cur, w);
+        Ok(cur)
     }
 
     /// The sweep from column `cur` where span `first` (already taken from the keys, up to
@@ -2062,6 +2127,34 @@ fn edge_cue<N: Scalar>(c: &Cue<N>, a: &Active<N>, w: &Walk, y: i32) -> [N; 2] {
             .div(n)
             .unwrap_or(N::ZERO),
     ]
+}
+
+/// Where the sweep resumes a row that [`Scanline::paint_apart`] painted up to a span that
+/// meets the one before it, `keys` being the keys it took before that span: at the last span
+/// it painted (the spans since began and ended before it, beyond the row's ends), from its
+/// start — the column and the key; at the start of the row if it painted none.
+#[cold]
+#[inline(never)]
+fn resume_at<N: Scalar>(keys: &[u32], active: &[Active<N>], w: i32) -> (i32, usize) {
+    let span = |k: u32| active.get(k as u16 as usize);
+    let painted = |b: &Active<N>| b.xr() > b.xl() && b.xr() > 0 && b.xl() < w;
+    let last = keys.iter().rposition(|&k| span(k).is_some_and(painted));
+    last.map_or((0, 0), |at| {
+        let x0 = keys.get(at).and_then(|&k| span(k)).map_or(0, |b| b.xl());
+        (x0.max(0), at)
+    })
+}
+
+/// Fills columns `x0..x1` of a colour row with the background, only where the row before left
+/// something else (`stale`).
+#[inline(always)]
+fn fill_background(row: &mut [Rgb565], stale: (i32, i32), background: Rgb565, x0: i32, x1: i32) {
+    let (b0, b1) = (x0.max(stale.0), x1.min(stale.1));
+    if b0 < b1 {
+        if let Some(run) = row.get_mut(b0 as usize..b1 as usize) {
+            fill_run(run, background);
+        }
+    }
 }
 
 /// Pixels of a row `0..w` that the span `xl..xr` covers.

@@ -1,4 +1,5 @@
-//! Property tests: the scan-line renderer equals the exact reference on random scenes.
+//! Property tests: the scan-line renderer equals the exact reference on random scenes, for a
+//! sink that reads depth and, in the same colours, for one that takes colours only.
 //!
 //! Vertices lie on the 1/256 grid, so snapping at 8 bits is the identity and the reference's
 //! coverage is exact in every format: every pixel must match except where the reference
@@ -63,6 +64,16 @@ fn check<N: Scalar>(p: &Polys) -> Result<(), TestCaseError> {
         "{} pixels differ, first {:?}",
         bad.len(),
         &bad[..bad.len().min(5)]
+    );
+    // A sink that takes colours only gets the same colours (its rows' spans that meet no
+    // other are painted as they come, the rest swept from the last of those).
+    let colours = p.render_colours::<N>(&cfg).unwrap();
+    let differ = (colours.iter().zip(&cap.color))
+        .filter(|(a, b)| a != b)
+        .count();
+    prop_assert!(
+        differ == 0,
+        "{differ} pixels differ for a sink of colours only"
     );
     for y in 0..H as usize {
         for x in 0..W as usize {

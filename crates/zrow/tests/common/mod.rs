@@ -60,6 +60,22 @@ impl<N: Scalar> RowSink<N> for Capture<N> {
     }
 }
 
+/// A frame's colours, top to bottom, from a sink that reads no depth.
+pub struct Colours(pub Vec<Rgb565>);
+
+impl<N: Scalar> RowSink<N> for Colours {
+    type Error = ();
+    const WANTS_DEPTH: bool = false;
+    fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), ()> {
+        assert!(
+            row.depth.is_empty(),
+            "depth handed to a sink that takes none"
+        );
+        self.0.extend_from_slice(row.color);
+        Ok(())
+    }
+}
+
 /// A distinct, non-black colour for polygon `i` (so a colour names its polygon).
 pub fn color_of(i: usize) -> Rgb565 {
     let i = i + 1;
@@ -111,6 +127,21 @@ impl Polys {
             let mut cap = Capture::new(cfg.width as usize, cfg.height as usize);
             let stats = r.render(scene, cfg, &mut cap)?;
             Ok((cap, stats))
+        })
+    }
+
+    /// The colours alone, as a display takes them: rendered for a sink that reads no depth
+    /// (the scan-line renderer then paints the spans of a row that meet no other as they
+    /// come, not through the sweep a depth-reading sink's rows take).
+    pub fn render_colours<N: Scalar>(
+        &self,
+        cfg: &Config,
+    ) -> Result<Vec<Rgb565>, zrow::RenderError<()>> {
+        let mut r = Box::new(Big::<N>::new());
+        self.with_scene(|scene| {
+            let mut sink = Colours(Vec::new());
+            r.render(scene, cfg, &mut sink)?;
+            Ok(sink.0)
         })
     }
 
