@@ -633,6 +633,9 @@ struct Sweep<N: Scalar, const W: usize, const P: usize, const A: usize, S: Slot,
     open: Vec<u16, A>,
     /// The row's depths, if kept.
     depth: D,
+    /// Whether to paint the next row's spans as they come ([`Self::paint_apart`]): no spans
+    /// met in the last row swept.
+    apart: bool,
     intensity: [Rgb565; W],
     /// This frame's depth cue, if `cued` (shading is not flat): see [`Self::frame_cue`].
     cue: Cue<N>,
@@ -767,6 +770,7 @@ impl<
                 // All zero, so a `static` renderer lands in .bss, not copied from flash; both rows
                 // are rewritten in full before each is sent.
                 depth: D::EMPTY,
+                apart: false,
                 intensity: [Rgb565::BLACK; W],
                 cue: Cue::UNSET,
                 cued: false,
@@ -861,6 +865,7 @@ impl<
         self.polygons.clear();
         self.used = 0;
         self.cover = 0;
+        self.apart = true;
         self.free = 0;
         self.sorted.clear();
         // The first polygon handed over outside the frame's vertices, if any.
@@ -1384,8 +1389,10 @@ impl<
         }
         // Spans that follow one another apart (a mesh's rows nearly always) are painted as
         // they come; the sweep takes over where one meets the one before it.
+        // Not tried on the row after one where spans met: overlap comes in runs of rows (the
+        // painting up to the meeting would be done again), until a row is swept without any.
         let (mut cur, mut k) = (0i32, 0usize);
-        if !self.row.more && !G::KEEPS {
+        if !self.row.more && !G::KEEPS && self.apart {
             match self.paint_apart() {
                 Ok(painted_to) => {
                     let from = self.sorted.first().map_or(w, |&key| key_left(key).max(0));
@@ -1395,6 +1402,7 @@ impl<
                 Err(resume) => (cur, k) = resume,
             }
         }
+        let mut met = false;
         let painted_to = loop {
             if cur >= w {
                 break cur;
@@ -1439,8 +1447,10 @@ impl<
             } else {
                 // (It paints every column from `cur` to where it stops.)
                 (cur, k) = self.overlap(vertices, cur, k, slot, want_depth, stats);
+                met = true;
             }
         };
+        self.apart = !met;
         // The columns painted with a polygon (the next row's `stale`), found once a row rather
         // than per span: up to where the last span painted ended, from the least left end (the
         // keys are sorted by it; columns before the first span painted, if any, got the
