@@ -1383,6 +1383,8 @@ impl<
         vertices: &[RasterVertex<N>],
     ) {
         let w = self.row.width;
+        // (Until `overlap` finds spans that meet.)
+        let apart = core::mem::replace(&mut self.apart, true);
         if self.cover > HEAVY_COVER * w && !self.row.cue && D::KEEPS {
             self.resolve_by_depth(vertices);
             return;
@@ -1392,7 +1394,7 @@ impl<
         // Not tried on the row after one where spans met: overlap comes in runs of rows (the
         // painting up to the meeting would be done again), until a row is swept without any.
         let (mut cur, mut k) = (0i32, 0usize);
-        if !self.row.more && !G::KEEPS && self.apart {
+        if !self.row.more && !G::KEEPS && apart {
             match self.paint_apart() {
                 Ok(painted_to) => {
                     let from = self.sorted.first().map_or(w, |&key| key_left(key).max(0));
@@ -1402,7 +1404,6 @@ impl<
                 Err(resume) => (cur, k) = resume,
             }
         }
-        let mut met = false;
         let painted_to = loop {
             if cur >= w {
                 break cur;
@@ -1447,10 +1448,8 @@ impl<
             } else {
                 // (It paints every column from `cur` to where it stops.)
                 (cur, k) = self.overlap(vertices, cur, k, slot, want_depth, stats);
-                met = true;
             }
         };
-        self.apart = !met;
         // The columns painted with a polygon (the next row's `stale`), found once a row rather
         // than per span: up to where the last span painted ended, from the least left end (the
         // keys are sorted by it; columns before the first span painted, if any, got the
@@ -1529,6 +1528,7 @@ impl<
     ) -> (i32, usize) {
         /// No front polygon.
         const NONE: usize = usize::MAX;
+        self.apart = false;
         let RowState { y, width: w, s, .. } = self.row;
         self.open.clear();
         let _ = self.open.push(first as u16);
