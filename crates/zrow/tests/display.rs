@@ -6,33 +6,17 @@
 //! perspective-correct cue.
 
 mod common;
-use common::Capture;
+use common::{Capture, Colours};
 use zrow::pixelcolor::Rgb565;
 use zrow::scanline::{ram_bytes_display, ram_bytes_uncued, Flat, NoDepth, Uncued};
 use zrow::shading::Interpolation;
-use zrow::{requirements, Error, RenderError, Row, RowSink, Scalar, Scanline, Q16_16};
+use zrow::{requirements, Error, RenderError, Scanline, Q16_16};
 
 type Plain<N> = Scanline<N, 240, 8192, 4096, 1024, u16, Uncued>;
 /// As `scanline_for!(N, REQ, display)` builds it (12-bit slots: 4,096 vertices at most).
 type Display<N> = zrow::scanline::Display<N, 240, 4096, 4096, 1024>;
 /// Without a depth row, with 16-bit slots (for foley2500's 7,500 vertices).
 type DisplayWide<N> = Scanline<N, 240, 8192, 4096, 1024, u16, Uncued, Flat, NoDepth>;
-
-/// A frame's colours, as a display takes them (no depth).
-struct Colours(Vec<Rgb565>);
-
-impl<N: Scalar> RowSink<N> for Colours {
-    type Error = ();
-    const WANTS_DEPTH: bool = false;
-    fn write_row(&mut self, row: &Row<'_, N>) -> Result<(), ()> {
-        assert!(
-            row.depth.is_empty(),
-            "depth handed to a sink that takes none"
-        );
-        self.0.extend_from_slice(row.color);
-        Ok(())
-    }
-}
 
 #[test]
 fn display_is_smaller_by_the_depth_row() {
