@@ -22,6 +22,12 @@
 //!   Entries stay where they are; the row's order by left end is kept on four-byte keys (left
 //!   end, slot), nearly sorted from one row to the next (sorted only for the rows that are
 //!   swept: a heavy row is resolved by depth, in any order);
+//! - **spans apart**: a mesh's spans mostly abut, one polygon's right edge the next one's left.
+//!   For a sink that takes colours only, a flat row is painted span by span in key order while
+//!   each begins at or after the end of the one before — each is then the visible surface
+//!   wherever it lies, and nothing is compared; where a span meets the last one painted, the
+//!   sweep below resolves the row from that one's start (and the next row, overlap coming in
+//!   runs of rows, is swept from the outset, until one sweeps without any);
 //! - **span coherence**: where one polygon is in front at both ends of its overlap with
 //!   another it is in front throughout (depths are linear in x, so their difference cannot
 //!   change sign in between). The row is filled from a *front* polygon with no per-pixel
