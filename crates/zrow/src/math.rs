@@ -167,10 +167,8 @@ impl<N: Scalar> Prepared<'_, N> {
     #[inline(always)]
     pub fn apply_checked_with(&self, math: MathLib, p: Vec3<N>) -> Option<Vec3<N>> {
         let plain = math == MathLib::Micromath;
-        let row = |k: usize| {
-            N::affine_row_halved(&self.affine.m[k], &self.halves[k], [p.x, p.y, p.z], plain)
-        };
-        Some(Vec3::new(row(0)?, row(1)?, row(2)?))
+        let [x, y, z] = N::affine_halved(&self.affine.m, &self.halves, [p.x, p.y, p.z], plain)?;
+        Some(Vec3::new(x, y, z))
     }
 }
 

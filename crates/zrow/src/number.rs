@@ -197,8 +197,8 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     }
     /// What a transform row keeps ready for many points ([`crate::math::Affine::prepare`]):
     /// in f32 the Veltkamp halves of its three linear entries, split once per transform
-    /// instead of once per point; fixed point whether its linear entries are small enough to sum
-    /// without an overflow check (a `bool`).
+    /// instead of once per point; fixed point, where its linear entries are small enough to sum
+    /// without an overflow check, the sum's start (the translation and the rounding half).
     type RowHalves: Copy + core::fmt::Debug;
     /// [`Scalar::RowHalves`] of `row`.
     fn row_halves(row: &[Self; 4]) -> Self::RowHalves;
@@ -209,6 +209,19 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
         p: [Self; 3],
         plain: bool,
     ) -> Option<Self>;
+    /// [`Scalar::affine_row_halved`] of the three rows of a transform at one point: the same
+    /// results. Fixed point tests once a point whether every row is small, and then sums all
+    /// three inline with the point in registers.
+    #[inline(always)]
+    fn affine_halved(
+        m: &[[Self; 4]; 3],
+        halves: &[Self::RowHalves; 3],
+        p: [Self; 3],
+        plain: bool,
+    ) -> Option<[Self; 3]> {
+        let row = |k: usize| Self::affine_row_halved(&m[k], &halves[k], p, plain);
+        Some([row(0)?, row(1)?, row(2)?])
+    }
     /// The direction of the face normal `(b − a) × (c − a)`, scaled by a power of two (f32: by
     /// the reciprocal of its largest component) so that its largest component lies in
     /// [1/2, 1]: a direction with the format's full precision, for lighting, without a
@@ -479,6 +492,25 @@ fn sat_i32(v: i128) -> i32 {
 #[inline(never)]
 fn affine_row_general<N: Scalar>(row: &[N; 4], p: [N; 3], plain: bool) -> Option<N> {
     N::affine_row_as(row, p, plain)
+}
+
+/// A fixed-point transform row whose linear entries are below 2^30 ([`Scalar::row_halves`]),
+/// with `f` fractional bits: the three products summed in `i64` from `start` (the translation
+/// in product units, plus the rounding half) with no overflow check (each product below 2^61,
+/// the translation below 2^47), then shifted — rounded to nearest with the half added first,
+/// `(v + 2^(f−1)) >> f`, as `affine_row`'s wider sums round with `((v >> (f − 1)) + 1) >> 1`.
+/// The raw result; `None` if it does not fit.
+#[inline(always)]
+fn small_row(row: [i32; 3], p: [i32; 3], start: i64, f: u32) -> Option<i32> {
+    let prod = |a: i32, b: i32| a as i64 * b as i64;
+    let v = start + prod(row[0], p[0]) + prod(row[1], p[1]) + prod(row[2], p[2]);
+    i32::try_from(v >> f).ok()
+}
+
+/// A fixed-point transform row's linear entries as raw bits.
+#[inline(always)]
+fn lin_bits<Frac: fixed::types::extra::LeEqU32>(row: &[fixed::FixedI32<Frac>; 4]) -> [i32; 3] {
+    [row[0].to_bits(), row[1].to_bits(), row[2].to_bits()]
 }
 
 /// `v` as an `i32`, saturated: one comparison of the high word in the common case.
@@ -841,41 +873,59 @@ macro_rules! impl_fixed {
                 };
                 Some((x, y, z))
             }
-            /// Whether the row's linear entries are all below 2^30 in magnitude, so that the
+            /// Where the row's linear entries are all below 2^30 in magnitude, so that the
             /// three products and the translation sum in `i64` with no overflow check (each
-            /// product below 2^61, the translation below 2^47): decided once per transform
-            /// instead of once per point.
-            type RowHalves = bool;
+            /// product below 2^61, the translation below 2^47), the sum's start: the
+            /// translation in product units with the rounding half added. Decided once per
+            /// transform instead of once per point.
+            type RowHalves = Option<i64>;
             #[inline]
-            fn row_halves(row: &[Self; 4]) -> bool {
+            fn row_halves(row: &[Self; 4]) -> Option<i64> {
                 let small = |v: Self| (v.to_bits().wrapping_add(1 << 30) as u32) < 1 << 31;
-                small(row[0]) && small(row[1]) && small(row[2])
+                let f = $t::FRAC_NBITS;
+                (small(row[0]) && small(row[1]) && small(row[2]))
+                    .then(|| ((row[3].to_bits() as i64) << f) + (1 << (f - 1)))
             }
-            // Inline where the row is small (a multiply and two multiply-accumulates, a
-            // rounding shift); the general sum out of line: inlined whole three times a
-            // vertex, it cost a Q16.16 firmware 1.2 KB of flash for 1 % fewer instructions.
+            // Inline where the row is small (three multiply-accumulates, a rounding shift);
+            // the general sum out of line: inlined whole three times a vertex, it cost a
+            // Q16.16 firmware 1.2 KB of flash for 1 % fewer instructions.
             #[inline]
             fn affine_row_halved(
                 row: &[Self; 4],
-                small: &bool,
+                start: &Option<i64>,
                 p: [Self; 3],
                 plain: bool,
             ) -> Option<Self> {
-                if *small {
-                    let f = $t::FRAC_NBITS;
-                    let prod = |a: Self, b: Self| a.to_bits() as i64 * b.to_bits() as i64;
-                    // Rounded to nearest, the half added first: `(v + 2^(f−1)) >> f`, as
-                    // `affine_row`'s wider sums round with `((v >> (f − 1)) + 1) >> 1`.
-                    let t = ((row[3].to_bits() as i64) << f) + (1 << (f - 1));
-                    let v = prod(row[0], p[0]) + prod(row[1], p[1]) + prod(row[2], p[2]) + t;
-                    return i32::try_from(v >> f).ok().map($t::from_bits);
+                if let Some(t) = *start {
+                    return small_row(lin_bits(row), p.map($t::to_bits), t, $t::FRAC_NBITS)
+                        .map($t::from_bits);
                 }
                 affine_row_general(row, p, plain)
             }
+            // One test a point instead of one a row, and the point kept in registers (the
+            // general path takes it in memory).
+            #[inline(always)]
+            fn affine_halved(
+                m: &[[Self; 4]; 3],
+                start: &[Option<i64>; 3],
+                p: [Self; 3],
+                plain: bool,
+            ) -> Option<[Self; 3]> {
+                if let [Some(a), Some(b), Some(c)] = *start {
+                    let q = p.map($t::to_bits);
+                    let row = |r: &[Self; 4], t: i64| {
+                        small_row(lin_bits(r), q, t, $t::FRAC_NBITS).map($t::from_bits)
+                    };
+                    return Some([row(&m[0], a)?, row(&m[1], b)?, row(&m[2], c)?]);
+                }
+                let row = |k: usize| affine_row_general(&m[k], p, plain);
+                Some([row(0)?, row(1)?, row(2)?])
+            }
             #[inline]
             fn affine_row(row: &[Self; 4], p: [Self; 3]) -> Option<Self> {
-                if Self::row_halves(row) {
-                    return Self::affine_row_halved(row, &true, p, false);
+                if let Some(t) = Self::row_halves(row) {
+                    return small_row(lin_bits(row), p.map($t::to_bits), t, $t::FRAC_NBITS)
+                        .map($t::from_bits);
                 }
                 let f = $t::FRAC_NBITS;
                 let prod = |a: Self, b: Self| a.to_bits() as i64 * b.to_bits() as i64;
