@@ -827,6 +827,15 @@ impl<
     }
 }
 
+/// What [`Sweep::prepare`] counts as polygons come: how many the scene handed over, the first
+/// outside the frame's vertices, whether any is smooth shaded.
+#[derive(Default)]
+struct Tally {
+    polys: u32,
+    uncached: Option<u32>,
+    smooth: bool,
+}
+
 impl<
         N: Scalar,
         const W: usize,
@@ -875,9 +884,8 @@ impl<
         self.free = 0;
         self.sorted.clear();
         // The first polygon handed over outside the frame's vertices, if any.
-        let (mut polys, mut uncached) = (0u32, None);
+        let mut tally = Tally::default();
         let (table, shades) = (&mut self.polygons, &mut self.shades);
-        let mut smooth = false;
         // Level 255 in the format: a flat polygon's intensity plane (only if planes are kept).
         let full = match G::KEEPS {
             true => N::from_f32(255.0).unwrap_or(N::ONE),
@@ -899,7 +907,8 @@ impl<
         let counted = height <= W;
         let diff = &mut self.intensity[..height.min(W)];
         diff.fill(count_of(0));
-        scene.polygons(cfg, &mut buf, &mut |poly| {
+        let t = &mut tally;
+        scene.polygons(cfg, &mut buf, &mut move |poly| {
             let n = poly.corners.len();
             // Geometry's corners are always in range; a scene of its own may not be.
             let out_of_range = || poly.corner_error();
@@ -941,7 +950,7 @@ impl<
                 };
                 (o, S::pack(corners))
             };
-            polys += 1;
+            t.polys += 1;
             // In the frame's buffer, and a polygon of more than INDEXED_CORNERS corners a run
             // of consecutive slots, as `Polygon::cached` promises (else treated as scratch).
             let cached = poly.cached
@@ -950,10 +959,10 @@ impl<
                 && (n <= INDEXED_CORNERS
                     || (1..n).all(|k| poly.corners[k] == poly.corners[0].wrapping_add(k as u32)));
             // Past a capacity, keep counting so the error can say what the scene needs.
-            if !cached && uncached.is_none() {
-                uncached = Some(poly.face);
+            if !cached && t.uncached.is_none() {
+                t.uncached = Some(poly.face);
             }
-            smooth |= poly.intensity.is_some();
+            t.smooth |= poly.intensity.is_some();
             if cached && table.len() < P {
                 if G::KEEPS {
                     // A flat polygon: its colour at level 255, which is the colour itself.
@@ -990,6 +999,11 @@ impl<
             needed,
             capacity: capacity as u32,
         };
+        let Tally {
+            polys,
+            uncached,
+            smooth,
+        } = tally;
         if smooth && !G::KEEPS {
             return Err(Error::Unsupported {
                 feature: "smooth shading (this Scanline's G is Flat: see scanline_for!)",
