@@ -1072,10 +1072,10 @@ impl<N: Scalar> Lighting<N> {
     #[inline(always)]
     fn intensity(&self, normal: Option<[N; 3]>) -> N {
         let lambert = match (normal, self.model_light, self.light, self.to_view) {
-            (Some(n), Some(lm), _, _) => self.lambert(n, [lm.x, lm.y, lm.z]),
+            (Some(n), Some(lm), _, _) => self.lambert(n, lm),
             (Some([x, y, z]), None, Some(l), Some(m)) => {
                 let n = m.apply_dir(Vec3::new(x, y, z));
-                self.lambert([n.x, n.y, n.z], [l.x, l.y, l.z])
+                self.lambert([n.x, n.y, n.z], l)
             }
             _ => N::ZERO,
         };
@@ -1087,9 +1087,9 @@ impl<N: Scalar> Lighting<N> {
     /// `max(0, n·l) / |n|` ([`Scalar::affine_row_as`], plain: in fixed point the dot products
     /// are summed exactly and rounded once; f32 sums plainly, far within an intensity step).
     #[inline]
-    fn lambert(&self, n: [N; 3], l: [N; 3]) -> N {
+    fn lambert(&self, n: [N; 3], l: Vec3<N>) -> N {
         let dot = |a: [N; 3], b: [N; 3]| N::affine_row_as(&[a[0], a[1], a[2], N::ZERO], b, true);
-        match dot(n, l) {
+        match dot(n, [l.x, l.y, l.z]) {
             Some(d) if d > N::ZERO => d.mul(self.math.rsqrt(dot(n, n).unwrap_or(N::MAX))),
             _ => N::ZERO,
         }
