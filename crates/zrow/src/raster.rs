@@ -549,24 +549,17 @@ pub(crate) fn fill_run(run: &mut [Rgb565], c: Rgb565) {
     for ch in &mut chunks {
         ch.copy_from_slice(&[c; 8]);
     }
-    // The rest (a mesh's spans are mostly shorter than eight) by four, two and one: three
-    // tests, not a loop.
-    let rest = match chunks.into_remainder() {
-        [a, b, d, e, rest @ ..] => {
-            (*a, *b, *d, *e) = (c, c, c, c);
-            rest
-        }
-        rest => rest,
-    };
-    let rest = match rest {
-        [a, b, rest @ ..] => {
-            (*a, *b) = (c, c);
-            rest
-        }
-        rest => rest,
-    };
-    if let [a, ..] = rest {
-        *a = c;
+    // The rest (a mesh's spans are mostly shorter than eight) by its length: one jump, then
+    // its stores.
+    match chunks.into_remainder() {
+        [a] => *a = c,
+        [a, b] => (*a, *b) = (c, c),
+        [a, b, d] => (*a, *b, *d) = (c, c, c),
+        [a, b, d, e] => (*a, *b, *d, *e) = (c, c, c, c),
+        [a, b, d, e, f] => (*a, *b, *d, *e, *f) = (c, c, c, c, c),
+        [a, b, d, e, f, g] => (*a, *b, *d, *e, *f, *g) = (c, c, c, c, c, c),
+        [a, b, d, e, f, g, h] => (*a, *b, *d, *e, *f, *g, *h) = (c, c, c, c, c, c, c),
+        _ => {}
     }
 }
 
