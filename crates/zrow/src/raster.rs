@@ -545,13 +545,14 @@ pub(crate) fn outline_triangle<T>(
 /// inlined around it).
 #[inline]
 pub(crate) fn fill_run(run: &mut [Rgb565], c: Rgb565) {
-    let mut chunks = run.chunks_exact_mut(8);
-    for ch in &mut chunks {
-        ch.copy_from_slice(&[c; 8]);
+    let mut rest = run;
+    while let [a, b, d, e, f, g, h, i, tail @ ..] = rest {
+        (*a, *b, *d, *e, *f, *g, *h, *i) = (c, c, c, c, c, c, c, c);
+        rest = tail;
     }
     // The rest (a mesh's spans are mostly shorter than eight) by its length: one jump, then
     // its stores.
-    match chunks.into_remainder() {
+    match rest {
         [a] => *a = c,
         [a, b] => (*a, *b) = (c, c),
         [a, b, d] => (*a, *b, *d) = (c, c, c),
