@@ -331,7 +331,10 @@ impl Dda {
             let rs = (dx - qs * dy) << s;
             let x0h = x0 - h;
             let num = (x0h & mask) * dy + t * dx;
-            let q = -((-num).div_euclid(den));
+            // −⌊−num / den⌋ (the fix-up of a truncated quotient without a branch: `den` > 0).
+            let n = -num;
+            let qt = n / den;
+            let q = -(qt + ((n - qt * den) >> 31));
             return Dda::new((x0h >> s) + q, q * den - num, qs, rs, den);
         }
         Edge {
