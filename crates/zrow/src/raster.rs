@@ -241,10 +241,12 @@ impl Edge {
 /// band, so a crossing inside the edge's rows is below 2^13 pixels, and an edge that spans
 /// two sample rows (the only kind ever stepped) is more than a row tall, so its step is below
 /// 2^14 pixels (a taller step, of an edge one row tall, is kept saturated and never used).
+/// The two share one word, the column in its high half: a step adds the word shifted up by
+/// half (the step onto the column, wrapping as 16 bits) — one load, add and store for both.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct Dda {
-    x: i16,
-    qs: i16,
+    /// `x` in the high 16 bits, `qs` in the low.
+    xq: u32,
     r: i32,
     rs: i32,
     den: i32,
@@ -253,8 +255,7 @@ pub struct Dda {
 impl Dda {
     /// A walk at column 0 that stays there (a placeholder).
     pub const ZERO: Dda = Dda {
-        x: 0,
-        qs: 0,
+        xq: 0,
         r: 0,
         rs: 0,
         den: 0,
@@ -264,9 +265,9 @@ impl Dda {
     /// (the column as 16 bits, the step saturated to them: see [`Dda`]).
     #[inline]
     fn new(x: i32, r: i32, qs: i32, rs: i32, den: i32) -> Dda {
+        let qs = qs.clamp(i16::MIN as i32, i16::MAX as i32) as i16;
         Dda {
-            x: x as i16,
-            qs: qs.clamp(i16::MIN as i32, i16::MAX as i32) as i16,
+            xq: (x as u32) << 16 | qs as u16 as u32,
             r,
             rs,
             den,
@@ -276,7 +277,7 @@ impl Dda {
     /// Current pixel column.
     #[inline]
     pub fn x(&self) -> i32 {
-        self.x as i32
+        self.xq as i32 >> 16
     }
 
     /// Where the edge crosses the current row's sample line, in pixel columns (pixel `i`'s
@@ -335,11 +336,11 @@ impl Dda {
     /// Moves to the next row.
     #[inline]
     pub fn step(&mut self) {
-        self.x = self.x.wrapping_add(self.qs);
+        self.xq = self.xq.wrapping_add(self.xq << 16);
         self.r -= self.rs;
         if self.r < 0 {
             self.r += self.den;
-            self.x = self.x.wrapping_add(1);
+            self.xq = self.xq.wrapping_add(1 << 16);
         }
     }
 }
