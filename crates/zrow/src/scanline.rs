@@ -1507,10 +1507,8 @@ impl<
                 let taken = sorted.len() - keys.len() - 1;
                 return Err(resume_at(sorted.get(..taken).unwrap_or(&[]), active, w));
             }
+            // (A span beyond the row's end has no columns: passed over like an empty one.)
             let (x0, x1) = (xl.max(0), xr.min(w));
-            if x0 >= w {
-                break; // it and the rest lie beyond the row
-            }
             end = xr;
             if x0 < x1 {
                 if cur < x0 {
