@@ -1499,7 +1499,10 @@ impl<
                 continue; // cannot happen: keys hold occupied slots
             };
             let (xl, xr) = (a.xl(), a.xr());
-            if xr <= xl {
+            // Spans with no columns on the row (empty, or off either end) are passed over: they
+            // meet nothing there.
+            let (x0, x1) = (xl.max(0), xr.min(w));
+            if x0 >= x1 {
                 continue;
             }
             if xl < end {
@@ -1507,18 +1510,14 @@ impl<
                 let taken = sorted.len() - keys.len() - 1;
                 return Err(resume_at(sorted.get(..taken).unwrap_or(&[]), active, w));
             }
-            // (A span beyond the row's end has no columns: passed over like an empty one.)
-            let (x0, x1) = (xl.max(0), xr.min(w));
             end = xr;
-            if x0 < x1 {
-                if cur < x0 {
-                    fill_background(intensity, row.stale, row.background, cur, x0);
-                }
-                if let Some(run) = intensity.get_mut(x0 as usize..x1 as usize) {
-                    fill_run(run, a.color(polygons));
-                }
-                cur = x1;
+            if cur < x0 {
+                fill_background(intensity, row.stale, row.background, cur, x0);
             }
+            if let Some(run) = intensity.get_mut(x0 as usize..x1 as usize) {
+                fill_run(run, a.color(polygons));
+            }
+            cur = x1;
         }
         fill_background(intensity, row.stale, row.background, cur, w);
         Ok(cur)
