@@ -839,7 +839,10 @@ macro_rules! impl_fixed {
                 }
                 i32::try_from(div::div_round(self.to_bits() as i64 * k as i64, d as i64)).ok()
             }
-            #[inline]
+            // Inlined into the vertex loop: its call took a fifth of its cost in arguments on
+            // the stack and saved registers (the torus frame −8.4 k on the Cortex-M4F, for
+            // 432 bytes of the F411 firmware's flash).
+            #[inline(always)]
             fn project(
                 self,
                 y: Self,
