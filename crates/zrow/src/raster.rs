@@ -203,11 +203,36 @@ pub(crate) fn row_at_or_below(y: i32, s: u32, h: i32) -> i32 {
 }
 
 impl Edge {
-    /// The state of the exact walk at `row` (which must lie in `first_row..=last_row`):
-    /// [`Dda::between`] its ends.
+    /// The state of the exact walk at `row` (which must lie in `first_row..=last_row`).
     pub fn dda_at(&self, row: i32, s: u32) -> Dda {
-        let (x1, y1) = (self.x0.wrapping_add(self.dx), self.y0.wrapping_add(self.dy));
-        Dda::between(self.x0, self.y0, x1, y1, row, s)
+        // Coordinates lie within the guard band (|x|, |y| < 2^21 sub-pixels with S ≤ 8), so
+        // dy·2^S and the step fit 32 bits; so does the first crossing when the edge starts
+        // less than two rows above `row` (every edge but those clamped to the top of the
+        // screen): one 32-bit division each instead of 64-bit library calls. Same results.
+        let (h, mask) = (1i32 << s >> 1, (1i32 << s) - 1);
+        let t = (row << s) + h - self.y0; // how far below the top the sample line is
+        let small = |v: i32| v.unsigned_abs() < 1 << 21;
+        if (0..512).contains(&t)
+            && self.dy > 0
+            && small(self.dy)
+            && small(self.dx)
+            && small(self.x0)
+            && s <= 8
+        {
+            let den = self.dy << s;
+            let qs = self.dx.div_euclid(self.dy);
+            let rs = (self.dx - qs * self.dy) << s;
+            // x0 − h = qx·2^S + fx; the crossing's column is qx + ceil((fx·dy + t·dx) / den).
+            let x0h = self.x0 - h;
+            let (qx, fx) = (x0h >> s, x0h & mask);
+            let num = fx * self.dy + t * self.dx;
+            // −⌊−num / den⌋, as `Dda::between` rounds it (`den` > 0).
+            let n = -num;
+            let qt = n / den;
+            let q = -(qt + ((n - qt * den) >> 31));
+            return Dda::new(qx + q, q * den - num, qs, rs, den);
+        }
+        self.dda_at_wide(row, s)
     }
 
     /// [`Edge::dda_at`] in 64-bit arithmetic, for any row.
@@ -296,14 +321,10 @@ impl Dda {
     }
 
     /// The walk of the edge from (`x0`, `y0`) down to (`x1`, `y1`) (sub-pixels, `y1 > y0`) at
-    /// sample row `row`.
+    /// sample row `row`: [`Edge::dda_at`] without building the edge.
     #[inline]
     pub fn between(x0: i32, y0: i32, x1: i32, y1: i32, row: i32, s: u32) -> Dda {
-        // Coordinates lie within the guard band (|x|, |y| < 2^21 sub-pixels with S ≤ 8), so
-        // dy·2^S and the step fit 32 bits; so does the first crossing when the edge starts
-        // less than two rows above `row` (every edge but those clamped to the top of the
-        // screen): one 32-bit division each instead of 64-bit library calls, the conditions
-        // folded into unsigned comparisons. Same results as the wide path.
+        // The fast path of `Edge::dda_at`, its conditions folded into unsigned comparisons.
         let (h, mask) = (1i32 << s >> 1, (1i32 << s) - 1);
         let (dx, dy) = (x1.wrapping_sub(x0), y1.wrapping_sub(y0));
         let t = (row << s).wrapping_add(h).wrapping_sub(y0);
@@ -325,8 +346,8 @@ impl Dda {
             last_row: 0,
             x0,
             y0,
-            dx,
-            dy,
+            dx: x1 - x0,
+            dy: y1 - y0,
             poly: 0,
             side: Side::Left,
         }
@@ -532,9 +553,12 @@ pub(crate) fn outline_triangle<T>(
 #[inline]
 pub(crate) fn fill_run(run: &mut [Rgb565], c: Rgb565) {
     let mut rest = run;
-    while let [a, b, d, e, f, g, h, i, tail @ ..] = rest {
-        (*a, *b, *d, *e, *f, *g, *h, *i) = (c, c, c, c, c, c, c, c);
-        rest = tail;
+    if rest.len() >= 8 {
+        let mut chunks = rest.chunks_exact_mut(8);
+        for ch in &mut chunks {
+            ch.copy_from_slice(&[c; 8]);
+        }
+        rest = chunks.into_remainder();
     }
     // The rest (a mesh's spans are mostly shorter than eight) by its length: one jump, then
     // its stores.
