@@ -197,21 +197,21 @@ struct Ring<'a, N, S: Slot> {
 }
 
 impl<N: Scalar> Active<N> {
-    /// Its plane's depth at the centre of pixel (0, `j`) (the plane being set): stepped from
-    /// `z_col`, which is at row 0 in the exact formats, at row [`Self::j_ref`] in f32. The
-    /// bits [`DepthPlane::at`] gives (in f32 its value).
+    /// Its plane's depth at the centre of pixel (0, `j`), `y` being the current row (the
+    /// plane being set): stepped from `z_col`, which is at row `y` in the exact formats, at
+    /// row [`Self::j_ref`] in f32. The bits [`DepthPlane::at`] gives (in f32 its value).
     #[inline]
-    fn column_0_at(&self, j: i32) -> N {
-        let from = if N::EXACT_STEPS { 0 } else { self.j_ref() };
+    fn column_0_at(&self, y: i32, j: i32) -> N {
+        let from = if N::EXACT_STEPS { y } else { self.j_ref() };
         self.z_col.step(self.dzdy, j.wrapping_sub(from))
     }
 
-    /// Its plane's depth at the centre of pixel (`i`, `j`): one step along row `j` from
-    /// [`Self::column_0_at`] (in f32 within a few units of the last place of the terms of
-    /// [`DepthPlane::at`]).
+    /// Its plane's depth at the centre of pixel (`i`, `j`), `y` being the current row: one
+    /// step along row `j` from [`Self::column_0_at`] (in f32 within a few units of the last
+    /// place of the terms of [`DepthPlane::at`]).
     #[inline]
-    fn plane_at(&self, i: i32, j: i32) -> N {
-        self.column_0_at(j).step(self.dzdx, i)
+    fn plane_at(&self, y: i32, i: i32, j: i32) -> N {
+        self.column_0_at(y, j).step(self.dzdx, i)
     }
 
     /// f32: its plane's reference row ([`Active::spare`]).
@@ -373,11 +373,11 @@ struct Active<N: Scalar> {
     /// and are drawn without one.
     dzdx: N,
     dzdy: N,
-    /// The rest of the plane, its depth at column 0 of a row, the row's depths evaluated from
-    /// there when needed ([`Active::plane_at`]): in the exact formats of row 0 (wrapping steps
-    /// give the plane's own bits from any row, so nothing is stepped as the sweep moves down),
-    /// in f32, which evaluates the plane afresh so that no error accumulates, of its reference
-    /// row ([`DepthPlane::column_0`]).
+    /// The rest of the plane, its depth at column 0 of a row: in the exact formats of the
+    /// current row (stepped a row down as the sweep moves: wrapping steps give the plane's
+    /// own bits), in f32, which evaluates the plane afresh so that no error accumulates, of
+    /// its reference row ([`DepthPlane::column_0`]), the row's depths evaluated from there
+    /// when needed ([`Active::plane_at`]).
     z_col: N,
     /// f32: that reference row (within the guard band, so 16 bits: [`Active::j_ref`]). The
     /// exact formats, which need none: the polygon's colour, so that painting a span needs no
@@ -1271,6 +1271,7 @@ impl<
                 vertices,
                 polygons: &self.polygons,
                 s: cfg.subpixel_bits as u32,
+                y,
             };
             planes.ensure(a);
         }
@@ -1352,6 +1353,11 @@ impl<
                 a.dda[RIGHT].step();
             } else {
                 found += next_edge(a, RIGHT, &below) as u32;
+            }
+            // Exact formats step (the same bits; unplaned, a harmless wrapping add to a value
+            // nobody reads, cheaper than the test); f32 evaluates the plane where it is read.
+            if N::EXACT_STEPS {
+                a.z_col = a.z_col.step(a.dzdy, 1);
             }
             if D::KEEPS {
                 cover += span_cover(a.xl(), a.xr(), w);
@@ -1547,6 +1553,7 @@ impl<
             vertices,
             polygons: &self.polygons,
             s,
+            y,
         };
         planes.ensure(&mut self.active[first]);
         // The front polygon: its slot, its index in `open`, where its span ends, and the first
@@ -1558,6 +1565,7 @@ impl<
                 vertices,
                 polygons: &self.polygons,
                 s,
+                y,
             };
             // Spans opening at or before `cur` (left ends read from the keys).
             while let Some(&key) = sorted.get(k) {
@@ -1681,6 +1689,7 @@ impl<
             vertices,
             polygons: &self.polygons,
             s,
+            y,
         };
         self.row.fresh = (0, width);
         let (depth, hiz) = self.depth.parts();
@@ -1878,6 +1887,7 @@ impl<
                 vertices,
                 polygons: &self.polygons,
                 s: self.row.s,
+                y: self.row.y,
             };
             planes.ensure(&mut self.active[slot]);
             let y = self.row.y;
@@ -2125,7 +2135,7 @@ fn step_cue<N: Scalar>(c: &Cue<N>, a: &Active<N>, e: &mut EdgeCue<N>, y: i32) {
 fn edge_cue<N: Scalar>(c: &Cue<N>, a: &Active<N>, w: &Walk, y: i32) -> [N; 2] {
     // Depth at the crossing: the plane at column x, stepped back by the fraction.
     let on_edge =
-        |d: &Dda, row: i32| c.at_depth(a.plane_at(d.x(), row).sub(a.dzdx.mul(d.fraction())));
+        |d: &Dda, row: i32| c.at_depth(a.plane_at(y, d.x(), row).sub(a.dzdx.mul(d.fraction())));
     let cue = on_edge(&w.dda, y);
     let rows = w.last as i32 - y;
     if rows <= 0 {
@@ -2246,7 +2256,7 @@ fn key_left(key: u32) -> i32 {
 /// point the plane's own bits: wrapping steps are exact).
 #[inline]
 fn depth_at<N: Scalar>(a: &Active<N>, y: i32, x: i32) -> N {
-    a.plane_at(x, y)
+    a.plane_at(y, x, y)
 }
 
 /// [`depth_at`] for many columns of the current row: f32 evaluates the row's depth at column
@@ -2263,7 +2273,7 @@ impl<'a, N: Scalar> RowDepths<'a, N> {
         let z_row = if N::EXACT_STEPS {
             N::ZERO // not read
         } else {
-            a.column_0_at(y)
+            a.column_0_at(y, y)
         };
         RowDepths { a, y, z_row }
     }
@@ -2384,7 +2394,7 @@ fn cue_span<N: Scalar>(intensity: &mut [Rgb565], a: &Active<N>, e: &EdgeCue<N>, 
 /// does not depend on where the row was split into pieces).
 #[inline]
 fn fill_depth<N: Scalar>(depth: &mut [N], a: &Active<N>, y: i32, x0: i32) {
-    let (z_row, dzdx) = (a.column_0_at(y), a.dzdx);
+    let (z_row, dzdx) = (a.column_0_at(y, y), a.dzdx);
     if N::EXACT_STEPS {
         let mut z = z_row.step(dzdx, x0);
         for d in depth {
@@ -2411,16 +2421,17 @@ fn fill_depth<N: Scalar>(depth: &mut [N], a: &Active<N>, y: i32, x0: i32) {
 const FPU: bool = !cfg!(all(target_arch = "arm", not(target_abi = "eabihf")));
 
 /// What computing a depth plane on demand needs: the vertex buffer, the polygon table, the
-/// sub-pixel bits.
+/// sub-pixel bits, the current row.
 struct Planes<'a, N, S: Slot> {
     vertices: &'a [RasterVertex<N>],
     polygons: &'a [Polygon<S>],
     s: u32,
+    y: i32,
 }
 
 impl<N: Scalar, S: Slot> Planes<'_, N, S> {
-    /// Sets `a`'s depth plane (in the exact formats its depth at column 0 of row 0) if not yet
-    /// set:
+    /// Sets `a`'s depth plane (in the exact formats its depth at column 0 of the current row)
+    /// if not yet set:
     /// the plane through its vertices in canonical order, the same bits whenever computed.
     #[inline]
     fn ensure(&self, a: &mut Active<N>) {
@@ -2441,7 +2452,7 @@ impl<N: Scalar, S: Slot> Planes<'_, N, S> {
         });
         (a.dzdx, a.dzdy) = (plane.dzdx, plane.dzdy);
         if N::EXACT_STEPS {
-            a.z_col = plane.at(0, 0);
+            a.z_col = plane.at(0, self.y);
         } else {
             // Within the guard band (at most 2^13 pixels off the screen), so 16 bits.
             (a.z_col, a.spare) = (plane.column_0(), plane.j_ref as i16 as u16);
