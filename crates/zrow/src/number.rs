@@ -494,23 +494,24 @@ fn affine_row_general<N: Scalar>(row: &[N; 4], p: [N; 3], plain: bool) -> Option
     N::affine_row_as(row, p, plain)
 }
 
-/// A fixed-point transform row whose linear entries are below 2^30 ([`Scalar::row_halves`]),
-/// with `f` fractional bits: the three products summed in `i64` from `start` (the translation
-/// in product units, plus the rounding half) with no overflow check (each product below 2^61,
-/// the translation below 2^47), then shifted — rounded to nearest with the half added first,
-/// `(v + 2^(f−1)) >> f`, as `affine_row`'s wider sums round with `((v >> (f − 1)) + 1) >> 1`.
-/// The raw result; `None` if it does not fit.
+/// A fixed-point transform row whose linear entries are below 2^30 ([`Scalar::row_halves`]):
+/// the three products summed in `i64` from `start` (the translation in product units, plus
+/// the rounding half) with no overflow check (each product below 2^61, the translation below
+/// 2^47), then shifted — rounded to nearest with the half added first, `(v + 2^(f−1)) >> f`,
+/// as `affine_row`'s wider sums round with `((v >> (f − 1)) + 1) >> 1`. `None` if it does
+/// not fit.
 #[inline(always)]
-fn small_row(row: [i32; 3], p: [i32; 3], start: i64, f: u32) -> Option<i32> {
-    let prod = |a: i32, b: i32| a as i64 * b as i64;
+fn small_row<Frac: fixed::types::extra::LeEqU32>(
+    row: &[fixed::FixedI32<Frac>; 4],
+    p: [fixed::FixedI32<Frac>; 3],
+    start: i64,
+) -> Option<fixed::FixedI32<Frac>> {
+    let prod = |a: fixed::FixedI32<Frac>, b: fixed::FixedI32<Frac>| {
+        a.to_bits() as i64 * b.to_bits() as i64
+    };
     let v = start + prod(row[0], p[0]) + prod(row[1], p[1]) + prod(row[2], p[2]);
-    i32::try_from(v >> f).ok()
-}
-
-/// A fixed-point transform row's linear entries as raw bits.
-#[inline(always)]
-fn lin_bits<Frac: fixed::types::extra::LeEqU32>(row: &[fixed::FixedI32<Frac>; 4]) -> [i32; 3] {
-    [row[0].to_bits(), row[1].to_bits(), row[2].to_bits()]
+    let f = fixed::FixedI32::<Frac>::FRAC_NBITS;
+    i32::try_from(v >> f).ok().map(fixed::FixedI32::from_bits)
 }
 
 /// `v` as an `i32`, saturated: one comparison of the high word in the common case.
@@ -900,8 +901,7 @@ macro_rules! impl_fixed {
                 plain: bool,
             ) -> Option<Self> {
                 if let Some(t) = *start {
-                    return small_row(lin_bits(row), p.map($t::to_bits), t, $t::FRAC_NBITS)
-                        .map($t::from_bits);
+                    return small_row(row, p, t);
                 }
                 affine_row_general(row, p, plain)
             }
@@ -915,10 +915,7 @@ macro_rules! impl_fixed {
                 plain: bool,
             ) -> Option<[Self; 3]> {
                 if let [Some(a), Some(b), Some(c)] = *start {
-                    let q = p.map($t::to_bits);
-                    let row = |r: &[Self; 4], t: i64| {
-                        small_row(lin_bits(r), q, t, $t::FRAC_NBITS).map($t::from_bits)
-                    };
+                    let row = |r: &[Self; 4], t: i64| small_row(r, p, t);
                     return Some([row(&m[0], a)?, row(&m[1], b)?, row(&m[2], c)?]);
                 }
                 let row = |k: usize| affine_row_general(&m[k], p, plain);
@@ -927,8 +924,7 @@ macro_rules! impl_fixed {
             #[inline]
             fn affine_row(row: &[Self; 4], p: [Self; 3]) -> Option<Self> {
                 if let Some(t) = Self::row_halves(row) {
-                    return small_row(lin_bits(row), p.map($t::to_bits), t, $t::FRAC_NBITS)
-                        .map($t::from_bits);
+                    return small_row(row, p, t);
                 }
                 let f = $t::FRAC_NBITS;
                 let prod = |a: Self, b: Self| a.to_bits() as i64 * b.to_bits() as i64;

@@ -192,6 +192,17 @@ fn div_ceil(a: i64, b: i64) -> i64 {
     -((-a).div_euclid(b))
 }
 
+/// `ceil(num / den)` for `den > 0` in 32 bits, as `−⌊−num / den⌋`: the truncated quotient
+/// fixed up by the remainder's sign bit, without a branch (`div_euclid` cannot see that the
+/// divisor is positive, and tests its sign). The walks' fast paths round their first
+/// crossing with it.
+#[inline(always)]
+fn div_ceil_positive(num: i32, den: i32) -> i32 {
+    let n = -num;
+    let q = n / den;
+    -(q + ((n - q * den) >> 31))
+}
+
 /// First sample row (or column) at or below `y` (sub-pixels): `ceil((y − h)/2^S)`, as a
 /// shift: `−floor((h − y)/2^S)`.
 #[inline]
@@ -226,10 +237,7 @@ impl Edge {
             let x0h = self.x0 - h;
             let (qx, fx) = (x0h >> s, x0h & mask);
             let num = fx * self.dy + t * self.dx;
-            // −⌊−num / den⌋, as `Dda::between` rounds it (`den` > 0).
-            let n = -num;
-            let qt = n / den;
-            let q = -(qt + ((n - qt * den) >> 31));
+            let q = div_ceil_positive(num, den);
             return Dda::new(qx + q, q * den - num, qs, rs, den);
         }
         self.dda_at_wide(row, s)
@@ -335,10 +343,7 @@ impl Dda {
             let rs = (dx - qs * dy) << s;
             let x0h = x0 - h;
             let num = (x0h & mask) * dy + t * dx;
-            // −⌊−num / den⌋ (the fix-up of a truncated quotient without a branch: `den` > 0).
-            let n = -num;
-            let qt = n / den;
-            let q = -(qt + ((n - qt * den) >> 31));
+            let q = div_ceil_positive(num, den);
             return Dda::new((x0h >> s) + q, q * den - num, qs, rs, den);
         }
         Edge {

@@ -883,7 +883,6 @@ impl<
         self.apart = true;
         self.free = 0;
         self.sorted.clear();
-        // The first polygon handed over outside the frame's vertices, if any.
         let mut tally = Tally::default();
         let (table, shades) = (&mut self.polygons, &mut self.shades);
         // Level 255 in the format: a flat polygon's intensity plane (only if planes are kept).
