@@ -535,6 +535,23 @@ const RSQRT_GUESS: [u32; 24] = [
     867714429, 850530263, 834328203, 819018128, 804521086, 790767575, 777696137, 765252196,
 ];
 
+/// `2^45/√m` (`2^30/√t`, `t = m/2^30`) for `m ∈ [2^29, 2^31)`: [`RSQRT_GUESS`] and two Newton
+/// steps (see [`rsqrt_bits`]). Every value fits 32 bits, so each product is one 32 × 32 →
+/// 64-bit multiply: `r` stays within 3 % of `2^30/√t < 2^30.5`, so `r² / 2^30 < 2^32`, and
+/// `tr2 = t·r²/2^30` within 7 % of 2^30, so `3·2^30 − tr2` is positive and below 2^32 (the
+/// same steps in 64-bit words give the same bits for every such `m`: tested).
+#[inline]
+fn rsqrt_steps(m: u32) -> u32 {
+    let mut r = RSQRT_GUESS[(m >> 26) as usize - 8];
+    let mul = |a: u32, b: u32, s: u32| ((a as u64 * b as u64) >> s) as u32;
+    for _ in 0..2 {
+        let r2 = mul(r, r, 30);
+        let tr2 = mul(m, r2, 30);
+        r = mul(r, (3u32 << 30).wrapping_sub(tr2), 31);
+    }
+    r
+}
+
 /// The raw bits of `1/√x` for the fixed-point value with raw bits `raw` and `f` (even)
 /// fractional bits; 0 for `raw ≤ 0`. `raw` is shifted left by an even amount into
 /// `m ∈ [2^29, 2^31)`, so `x = t·2^(30 − f − sh)` with `t = m/2^30 ∈ [1/2, 2)`; `1/√t` starts
@@ -546,12 +563,7 @@ fn rsqrt_bits(raw: i32, f: u32) -> i32 {
     }
     let sh = (raw.leading_zeros() - 1) & !1;
     let m = (raw as u32) << sh;
-    let mut r = RSQRT_GUESS[(m >> 26) as usize - 8] as u64;
-    for _ in 0..2 {
-        let r2 = (r * r) >> 30;
-        let tr2 = (m as u64 * r2) >> 30;
-        r = (r * ((3u64 << 30) - tr2)) >> 31;
-    }
+    let r = rsqrt_steps(m) as u64;
     // 1/√x = (r/2^30)·2^((f + sh − 30)/2), as raw bits: r·2^((f + sh − 30)/2 + f − 30).
     let shift = (f + sh) as i32 / 2 - 15 + f as i32 - 30;
     if shift >= 0 {
@@ -1834,6 +1846,24 @@ mod tests {
         assert_eq!(rsqrt_bits(4 << 16, 16), 1 << 15); // 1/√4 = 0.5
         let f = Scalar::rsqrt(2.0f32);
         assert!((f - core::f32::consts::FRAC_1_SQRT_2).abs() < 2e-7, "{f}");
+    }
+
+    #[test]
+    fn rsqrt_steps_in_32_bits_equal_them_in_64() {
+        // In 64-bit words throughout, where nothing can overflow. Every `m` of the range was
+        // compared once (2^31 − 2^29 values); here each guess interval's ends and a stride.
+        let wide = |m: u32| {
+            let mut r = RSQRT_GUESS[(m >> 26) as usize - 8] as u64;
+            for _ in 0..2 {
+                let tr2 = (m as u64 * ((r * r) >> 30)) >> 30;
+                r = (r * ((3u64 << 30) - tr2)) >> 31;
+            }
+            r
+        };
+        let ends = (8u32..32).flat_map(|k| [k << 26, (k << 26) + 1, ((k + 1) << 26) - 1]);
+        for m in ((1u32 << 29)..(1 << 31)).step_by(997).chain(ends) {
+            assert_eq!(rsqrt_steps(m) as u64, wide(m), "m {m}");
+        }
     }
 
     #[test]
