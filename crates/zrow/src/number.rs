@@ -563,14 +563,18 @@ fn rsqrt_bits(raw: i32, f: u32) -> i32 {
     }
     let sh = (raw.leading_zeros() - 1) & !1;
     let m = (raw as u32) << sh;
-    let r = rsqrt_steps(m) as u64;
+    let r = rsqrt_steps(m);
     // 1/√x = (r/2^30)·2^((f + sh − 30)/2), as raw bits: r·2^((f + sh − 30)/2 + f − 30).
     let shift = (f + sh) as i32 / 2 - 15 + f as i32 - 30;
     if shift >= 0 {
         sat_i64(((r as i64) << shift.min(32)).min(i32::MAX as i64))
     } else {
+        // Rounded to nearest in 32 bits (`r < 2^31`): 0 from a shift of 32 on.
         let s = (-shift) as u32;
-        ((r + (1 << (s - 1))) >> s) as i32
+        match s {
+            1..=31 => ((r + (1 << (s - 1))) >> s) as i32,
+            _ => 0,
+        }
     }
 }
 
