@@ -536,12 +536,22 @@ const RSQRT_GUESS: [u32; 24] = [
 ];
 
 /// `2^45/√m` (`2^30/√t`, `t = m/2^30`) for `m ∈ [2^29, 2^31)`: [`RSQRT_GUESS`] and two Newton
-/// steps (see [`rsqrt_bits`]). Every value fits 32 bits, so each product is one 32 × 32 →
-/// 64-bit multiply: `r` stays within 3 % of `2^30/√t < 2^30.5`, so `r² / 2^30 < 2^32`, and
-/// `tr2 = t·r²/2^30` within 7 % of 2^30, so `3·2^30 − tr2` is positive and below 2^32 (the
-/// same steps in 64-bit words give the same bits for every such `m`: tested).
+/// steps (see [`rsqrt_bits`]), in the machine's word: [`rsqrt_steps_32`] on a 32-bit core,
+/// the same steps in 64-bit words on a 64-bit host (the same bits: tested).
 #[inline]
 fn rsqrt_steps(m: u32) -> u32 {
+    if cfg!(target_pointer_width = "64") {
+        rsqrt_steps_64(m)
+    } else {
+        rsqrt_steps_32(m)
+    }
+}
+
+/// [`rsqrt_steps`] with every value in 32 bits, so that each product is one 32 × 32 → 64-bit
+/// multiply: `r` stays within 3 % of `2^30/√t < 2^30.5`, so `r² / 2^30 < 2^32`, and
+/// `tr2 = t·r²/2^30` within 7 % of 2^30, so `3·2^30 − tr2` is positive and below 2^32.
+#[inline]
+fn rsqrt_steps_32(m: u32) -> u32 {
     let mut r = RSQRT_GUESS[(m >> 26) as usize - 8];
     let mul = |a: u32, b: u32, s: u32| ((a as u64 * b as u64) >> s) as u32;
     for _ in 0..2 {
@@ -550,6 +560,17 @@ fn rsqrt_steps(m: u32) -> u32 {
         r = mul(r, (3u32 << 30).wrapping_sub(tr2), 31);
     }
     r
+}
+
+/// [`rsqrt_steps`] in 64-bit words, where nothing can overflow.
+#[inline]
+fn rsqrt_steps_64(m: u32) -> u32 {
+    let mut r = RSQRT_GUESS[(m >> 26) as usize - 8] as u64;
+    for _ in 0..2 {
+        let tr2 = (m as u64 * ((r * r) >> 30)) >> 30;
+        r = (r * ((3u64 << 30).wrapping_sub(tr2))) >> 31;
+    }
+    r as u32
 }
 
 /// The raw bits of `1/√x` for the fixed-point value with raw bits `raw` and `f` (even)
@@ -1854,19 +1875,11 @@ mod tests {
 
     #[test]
     fn rsqrt_steps_in_32_bits_equal_them_in_64() {
-        // In 64-bit words throughout, where nothing can overflow. Every `m` of the range was
-        // compared once (2^31 − 2^29 values); here each guess interval's ends and a stride.
-        let wide = |m: u32| {
-            let mut r = RSQRT_GUESS[(m >> 26) as usize - 8] as u64;
-            for _ in 0..2 {
-                let tr2 = (m as u64 * ((r * r) >> 30)) >> 30;
-                r = (r * ((3u64 << 30) - tr2)) >> 31;
-            }
-            r
-        };
+        // Every `m` of the range was compared once (2^31 − 2^29 values); here each guess
+        // interval's ends and a stride between.
         let ends = (8u32..32).flat_map(|k| [k << 26, (k << 26) + 1, ((k + 1) << 26) - 1]);
         for m in ((1u32 << 29)..(1 << 31)).step_by(997).chain(ends) {
-            assert_eq!(rsqrt_steps(m) as u64, wide(m), "m {m}");
+            assert_eq!(rsqrt_steps_32(m), rsqrt_steps_64(m), "m {m}");
         }
     }
 
