@@ -1149,6 +1149,22 @@ impl<
                 || self
                     .frame_cue()
                     .is_some_and(|c| c.interpolation == Interpolation::PerspectiveCorrect));
+        // What every row of the frame shares; `y`, `stale` and `fresh` are set row by row.
+        let cue = self
+            .frame_cue()
+            .is_some_and(|c| c.interpolation == Interpolation::Affine);
+        self.row = RowState {
+            y: 0,
+            width: width as i32,
+            s: cfg.subpixel_bits as u32,
+            background: cfg.background,
+            cue,
+            more: want_depth || cue,
+            #[cfg(feature = "exact-depth")]
+            exact: K::WANTS_DEPTH,
+            stale: (0, width as i32),
+            fresh: (width as i32, 0),
+        };
         let mut cursor = 0;
         for y in 0..cfg.height as i32 {
             // Polygons whose first row this is enter the active list (their keys after the
@@ -1167,21 +1183,7 @@ impl<
             } else {
                 self.row.fresh
             };
-            let cue = self
-                .frame_cue()
-                .is_some_and(|c| c.interpolation == Interpolation::Affine);
-            self.row = RowState {
-                y,
-                width: width as i32,
-                s: cfg.subpixel_bits as u32,
-                background: cfg.background,
-                cue,
-                more: want_depth || cue,
-                #[cfg(feature = "exact-depth")]
-                exact: K::WANTS_DEPTH,
-                stale,
-                fresh: (width as i32, 0),
-            };
+            (self.row.y, self.row.stale, self.row.fresh) = (y, stale, (width as i32, 0));
             // A heavy row (see `resolve_row`) is resolved by depth over the active polygons in
             // any order: only the sweep needs them by left end.
             if self.cover <= HEAVY_COVER * width as i32 || self.row.cue || !D::KEEPS {
