@@ -1184,12 +1184,24 @@ impl<
                 self.row.fresh
             };
             (self.row.y, self.row.stale, self.row.fresh) = (y, stale, (width as i32, 0));
-            // A heavy row (see `resolve_row`) is resolved by depth over the active polygons in
-            // any order: only the sweep needs them by left end.
-            if self.cover <= HEAVY_COVER * width as i32 || self.row.cue || !D::KEEPS {
-                self.sort_active(old);
+            // A row no polygon crosses (above and below a mesh, most of a frame's rows) is the
+            // background, written only where the row before left something else; with colours
+            // alone to send, nothing more is done for it.
+            let empty = self.sorted.is_empty();
+            if empty && !self.row.more {
+                let RowState {
+                    stale, background, ..
+                } = self.row;
+                fill_background(&mut self.intensity, stale, background, 0, width as i32);
+                (self.row.fresh, self.apart) = ((width as i32, 0), true);
+            } else {
+                // A heavy row (see `resolve_row`) is resolved by depth over the active
+                // polygons in any order: only the sweep needs them by left end.
+                if self.cover <= HEAVY_COVER * width as i32 || self.row.cue || !D::KEEPS {
+                    self.sort_active(old);
+                }
+                self.resolve_row(want_depth, stats, vertices);
             }
-            self.resolve_row(want_depth, stats, vertices);
             let depth: &[N] = if want_depth {
                 if !(EXACT_DEPTH && K::WANTS_DEPTH) {
                     // (A sink that reads depth had the cue on each piece, before its exact
@@ -1209,7 +1221,10 @@ impl<
                 color: &self.intensity[..width],
                 depth,
             })?;
-            self.advance(y, cfg, vertices);
+            // (With no keys, stepping has nothing to do.)
+            if !empty {
+                self.advance(y, cfg, vertices);
+            }
         }
         stats.edges = self.edges;
         Ok(())
