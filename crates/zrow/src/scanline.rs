@@ -1185,14 +1185,11 @@ impl<
             };
             (self.row.y, self.row.stale, self.row.fresh) = (y, stale, (width as i32, 0));
             // A row no polygon crosses (above and below a mesh, most of a frame's rows) is the
-            // background, written only where the row before left something else; with colours
-            // alone to send, nothing more is done for it.
+            // background (its colour written only where the row before left something else),
+            // and nothing more is done for it: what `resolve_row` would do, without its sweep.
             let empty = self.sorted.is_empty();
-            if empty && !self.row.more {
-                let RowState {
-                    stale, background, ..
-                } = self.row;
-                fill_background(&mut self.intensity, stale, background, 0, width as i32);
+            if empty {
+                self.paint(vertices, 0, width as i32, None, want_depth);
                 (self.row.fresh, self.apart) = ((width as i32, 0), true);
             } else {
                 // A heavy row (see `resolve_row`) is resolved by depth over the active
