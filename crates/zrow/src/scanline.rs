@@ -1163,7 +1163,8 @@ impl<
             #[cfg(feature = "exact-depth")]
             exact: K::WANTS_DEPTH,
             stale: (0, width as i32),
-            fresh: (width as i32, 0),
+            // Before the first row, any column may hold something else: its `stale`.
+            fresh: (0, width as i32),
         };
         let mut cursor = 0;
         for y in 0..cfg.height as i32 {
@@ -1177,20 +1178,15 @@ impl<
                 cursor += 1;
                 self.activate(vertices, i, y, cfg, want_depth);
             }
-            // The whole row is unknown on the first row of a frame.
-            let stale = if y == 0 {
-                (0, width as i32)
-            } else {
-                self.row.fresh
-            };
-            (self.row.y, self.row.stale, self.row.fresh) = (y, stale, (width as i32, 0));
+            // What the row before painted is this row's `stale`.
+            (self.row.y, self.row.stale, self.row.fresh) = (y, self.row.fresh, (width as i32, 0));
             // A row no polygon crosses (above and below a mesh, most of a frame's rows) is the
             // background (its colour written only where the row before left something else),
             // and nothing more is done for it: what `resolve_row` would do, without its sweep.
             let empty = self.sorted.is_empty();
             if empty {
                 self.paint(vertices, 0, width as i32, None, want_depth);
-                (self.row.fresh, self.apart) = ((width as i32, 0), true);
+                self.apart = true; // (`fresh` stays empty: nothing painted)
             } else {
                 // A heavy row (see `resolve_row`) is resolved by depth over the active
                 // polygons in any order: only the sweep needs them by left end.
