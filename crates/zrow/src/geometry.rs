@@ -88,9 +88,10 @@ pub enum ViewDepth<N> {
 
 impl<N: Scalar> ViewDepth<N> {
     /// View distance at stored depth `z` (saturating; the far limit where `z` reaches `k`).
+    #[inline]
     pub fn w(&self, z: N) -> N {
         match *self {
-            ViewDepth::InverseW { k, k_near } => k_near.div(k.sub(z)).unwrap_or(N::MAX),
+            ViewDepth::InverseW { k, k_near } => k_near.div_inline(k.sub(z)).unwrap_or(N::MAX),
             ViewDepth::Linear { near, per_depth } => near.add(z.mul(per_depth)),
         }
     }

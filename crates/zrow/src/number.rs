@@ -149,6 +149,13 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     /// Division, rounded to nearest (fixed point: ties away from zero); `None` when dividing by
     /// zero or when the quotient is out of range.
     fn div(self, o: Self) -> Option<Self>;
+    /// [`Scalar::div`] inlined into the caller (the same result): for a loop that divides
+    /// once a pixel, such as the depth cue's distance (fixed point on a 32-bit core: its
+    /// common path, a few hardware divisions, without a call).
+    #[inline(always)]
+    fn div_inline(self, o: Self) -> Option<Self> {
+        self.div(o)
+    }
     /// `round(self · k / d)` as an integer: a ratio of two values of the format scaled by an
     /// integer, exact and rounded once (ties away from zero; f32: in f32, then to nearest).
     /// Projection uses it to go from clip space straight to sub-pixels. `None` if `d ≤ 0`, the
@@ -860,14 +867,12 @@ macro_rules! impl_fixed {
             }
             #[inline]
             fn div(self, o: Self) -> Option<Self> {
-                if o.to_bits() == 0 {
-                    return None;
-                }
-                let q = div::div_round(
-                    (self.to_bits() as i64) << $t::FRAC_NBITS,
-                    o.to_bits() as i64,
-                );
-                i32::try_from(q).ok().map($t::from_bits)
+                div::div_fixed(self.to_bits(), $t::FRAC_NBITS, o.to_bits()).map($t::from_bits)
+            }
+            #[inline(always)]
+            fn div_inline(self, o: Self) -> Option<Self> {
+                div::div_fixed_inline(self.to_bits(), $t::FRAC_NBITS, o.to_bits())
+                    .map($t::from_bits)
             }
             #[inline]
             fn ratio(self, k: i32, d: Self) -> Option<i32> {

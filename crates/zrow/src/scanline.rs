@@ -1199,11 +1199,7 @@ impl<
                 if !(EXACT_DEPTH && K::WANTS_DEPTH) {
                     // (A sink that reads depth had the cue on each piece, before its exact
                     // depths replaced the stepped ones.)
-                    Cue::shade_row_if_perspective(
-                        &self.frame_cue(),
-                        &self.depth.parts().0[..width],
-                        &mut self.intensity[..width],
-                    );
+                    self.shade_painted();
                 }
                 &self.depth.parts().0[..width]
             } else {
@@ -1221,6 +1217,22 @@ impl<
         }
         stats.edges = self.edges;
         Ok(())
+    }
+
+    /// The perspective-correct depth cue on the row just resolved, over the columns it painted
+    /// with polygons (`fresh`): the rest is background, which the cue leaves alone. Out of
+    /// line: the row loop keeps its registers for the frames without the cue.
+    #[inline(never)]
+    fn shade_painted(&mut self) {
+        let (x0, x1) = self.row.fresh;
+        let painted = x0.max(0) as usize..x1.clamp(0, self.row.width) as usize;
+        let cue = self.frame_cue();
+        if let (Some(depth), Some(colours)) = (
+            self.depth.parts().0.get(painted.clone()),
+            self.intensity.get_mut(painted),
+        ) {
+            Cue::shade_row_if_perspective(&cue, depth, colours);
+        }
     }
 
     /// Polygon `i` enters the active list on row `y`, its first: its depth plane, and its two
@@ -2389,7 +2401,7 @@ fn insertion_sort(v: &mut [u32]) {
 /// interpolated linearly between the edges' crossings of the row (one division per span).
 fn cue_span<N: Scalar>(intensity: &mut [Rgb565], a: &Active<N>, e: &EdgeCue<N>, x0: i32, x1: i32) {
     let (cl, cr) = (a.dda[LEFT].crossing::<N>(), a.dda[RIGHT].crossing::<N>());
-    let slope = e.f[2].sub(e.f[0]).div(cr.sub(cl)).unwrap_or(N::ZERO);
+    let slope = e.f[2].sub(e.f[0]).div_inline(cr.sub(cl)).unwrap_or(N::ZERO);
     let at = N::from_int;
     let mut f = e.f[0].add(at(x0).sub(cl).mul(slope));
     for c in &mut intensity[x0 as usize..x1 as usize] {

@@ -205,6 +205,57 @@ pub(crate) fn div_round_shifted(n: i32, shift: u32, d: u32) -> Option<i32> {
     rounded(q, r, d, n < 0)
 }
 
+/// A fixed-point division: `n · 2^shift / d` rounded to nearest, ties away from zero (`n`, `d`
+/// a format's bits, `shift` its fractional bits); `None` for `d = 0` or a quotient that does
+/// not fit an `i32`. On a 32-bit core a divisor below 2^24 (nearly every one) takes a hardware
+/// division per 8 bits of the quotient ([`div_round_shifted_signed`]) instead of a 64-bit
+/// division; the same result. Out of line: most callers divide a few times a frame, and
+/// their loops keep their registers ([`div_fixed_inline`] is for a loop that divides once a
+/// pixel).
+#[inline(never)]
+pub(crate) fn div_fixed(n: i32, shift: u32, d: i32) -> Option<i32> {
+    div_fixed_inline(n, shift, d)
+}
+
+/// [`div_fixed`], its common path inlined into the caller.
+#[inline(always)]
+pub(crate) fn div_fixed_inline(n: i32, shift: u32, d: i32) -> Option<i32> {
+    if cfg!(target_pointer_width = "32") {
+        if let Some(q) = div_round_shifted_signed(n, shift, d) {
+            return Some(q);
+        }
+    }
+    div_fixed_wide(n, shift, d)
+}
+
+/// [`div_fixed`] the general way (a 64-bit numerator). Out of line: rare, and its callers'
+/// loops keep their registers.
+#[inline(never)]
+fn div_fixed_wide(n: i32, shift: u32, d: i32) -> Option<i32> {
+    if d == 0 {
+        return None;
+    }
+    i32::try_from(div_round((n as i64) << shift, d as i64)).ok()
+}
+
+/// `n · 2^shift / d` rounded to nearest, ties away from zero, for a divisor of either sign:
+/// [`div_round_shifted`] by `|d|`, negated for a negative `d` (the rounding is symmetric). The
+/// result of [`div_round`]`((n as i64) << shift, d as i64)` where this gives one; `None` where
+/// `d` is 0 or `|d|` not below 2^24, `shift` not a multiple of 8, or the quotient does not fit an `i32`
+/// (then the caller divides the general way, which decides).
+#[inline]
+pub(crate) fn div_round_shifted_signed(n: i32, shift: u32, d: i32) -> Option<i32> {
+    let ud = d.unsigned_abs();
+    if ud == 0 || ud >= 1 << 24 || shift % 8 != 0 {
+        return None;
+    }
+    let q = div_round_shifted(n, shift, ud)?;
+    match d < 0 {
+        true => q.checked_neg(),
+        false => Some(q),
+    }
+}
+
 /// Quotient `q` and remainder `r` of a magnitude by `d`, rounded to nearest (ties away from
 /// zero) and signed: `None` if that does not fit an `i32`.
 #[inline]
@@ -363,5 +414,66 @@ mod tests {
             div_round_small_divisor(((1 << 31) - 1) * 3, 3),
             Some(i32::MAX)
         );
+    }
+
+    /// The fixed-point division the long way: `div_round` of the shifted numerator, `None`
+    /// past `i32` or for a zero divisor.
+    fn fixed_wide(n: i32, shift: u32, d: i32) -> Option<i32> {
+        (d != 0)
+            .then(|| i32::try_from(div_round((n as i64) << shift, d as i64)).ok())
+            .flatten()
+    }
+
+    #[test]
+    fn fixed_point_division_equals_the_wide_one() {
+        // Both signs of numerator and divisor, divisors on both sides of 2^24 and 0, the
+        // formats' shifts (and one the fast path declines): the signed fast path, where it
+        // answers, and `div_fixed` (both paths on a 32-bit core, the wide one on a 64-bit
+        // host), always, give the wide division's answer.
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut taken = 0;
+        let mut check = |n: i32, shift: u32, d: i32| {
+            let want = fixed_wide(n, shift, d);
+            assert_eq!(div_fixed(n, shift, d), want, "{n} << {shift} / {d}");
+            assert_eq!(div_fixed_inline(n, shift, d), want, "{n} << {shift} / {d}");
+            match div_round_shifted_signed(n, shift, d) {
+                Some(q) => {
+                    assert_eq!(Some(q), want, "{n} << {shift} / {d}");
+                    taken += 1;
+                }
+                // Declined: out of its range, or a quotient past `i32` (of either sign).
+                None => assert!(
+                    d == 0
+                        || d.unsigned_abs() >= 1 << 24
+                        || shift % 8 != 0
+                        || i64::from(want.unwrap_or(i32::MIN)).abs() >= (1 << 31) - 1,
+                    "{n} << {shift} / {d}"
+                ),
+            }
+        };
+        for k in 0..400_000u32 {
+            let n = (xorshift64(&mut seed) as i32) >> (xorshift64(&mut seed) % 32);
+            let d = (xorshift64(&mut seed) as i32) >> (xorshift64(&mut seed) % 32);
+            check(n, [16, 8, 16, 12][(k % 4) as usize], d);
+        }
+        for n in [0, 1, -1, i32::MAX, i32::MIN, 1 << 15, -(1 << 15), 3 << 14] {
+            for d in [
+                1,
+                -1,
+                2,
+                -2,
+                3,
+                -3,
+                (1 << 24) - 1,
+                -(1 << 24) + 1,
+                1 << 24,
+                0,
+            ] {
+                for shift in [8, 16] {
+                    check(n, shift, d);
+                }
+            }
+        }
+        assert!(taken > 200_000, "{taken}");
     }
 }
