@@ -652,6 +652,18 @@ fn face_normal_i16(a: [i16; 3], b: [i16; 3], c: [i16; 3], f: u32) -> Option<[i32
     Some([out(n[0]), out(n[1]), out(n[2])])
 }
 
+/// [`plane_i64`]'s three quotients for a divisor `c` below 2^24, as
+/// [`div::div_round_small_divisor`] gives them: `round(num / c)`, `round(−sa / c)`,
+/// `round(−sb / c)`; `None` if `c` is larger or a quotient does not fit an `i32` (then the
+/// reciprocal's, which are the same where these are). Out of line: its callers keep their
+/// registers.
+#[inline(never)]
+fn small_area_plane(num: i64, sa: i64, sb: i64, c: u64) -> Option<(i32, i32, i32)> {
+    let c = u32::try_from(c).ok().filter(|&c| c < 1 << 24)?;
+    let q = |n: i64| div::div_round_small_divisor(n, c);
+    Some((q(num)?, q(-sa)?, q(-sb)?))
+}
+
 /// The fixed-point depth plane of [`Scalar::depth_plane`] in 64-bit integers: `Some(None)` for
 /// zero area, `Some(Some((z_ref, dzdx, dzdy)))` as raw bits, or `None` when an intermediate does
 /// not fit 64 bits (then the 128-bit computation, which gives the same bits, is used). Every
@@ -684,7 +696,12 @@ fn plane_i64<N: Copy>(
             let (a, b, c) = if c < 0 { (-a, -b, -c) } else { (a, b, c) };
             if a.unsigned_abs() < 1 << 39 && b.unsigned_abs() < 1 << 39 {
                 let num = -(a * (half - p0.x as i64) + b * (half - p0.y as i64));
-                // Three quotients by one divisor: its reciprocal once.
+                // A small triangle (a doubled area below 2^24 sub-pixels², nearly every one of
+                // a mesh): three quotients in 8-bit hardware digits, where they fit `i32`.
+                if let Some(p) = small_area_plane(num, a << s, b << s, c as u64) {
+                    return Some(Some((bits(p0.z).wrapping_add(p.0), p.1, p.2)));
+                }
+                // Else three quotients by one divisor: its reciprocal once.
                 let c = div::Recip::new(c as u64);
                 let z_ref = (bits(p0.z) as i64).wrapping_add(c.div_round(num));
                 return Some(Some((
@@ -1895,13 +1912,15 @@ mod tests {
             let seed = crate::number::xorshift64(&mut seed);
             (seed % (2 * m as u64 + 1)) as i64 - m
         };
-        let (mut fast, mut planes) = (0, 0);
-        for k in 0..50_000 {
-            // Small polygons near the screen, large ones across the guard band, and extreme
-            // coordinates that push the 64-bit path out.
-            let (reach, z) = match k % 3 {
+        let (mut fast, mut planes, mut tiny) = (0, 0, 0);
+        for k in 0..60_000 {
+            // A mesh's tiny triangles (their quotients in 8-bit digits), small polygons near
+            // the screen, large ones across the guard band, and extreme coordinates that push
+            // the 64-bit path out.
+            let (reach, z) = match k % 4 {
                 0 => (1 << 12, 1 << 20),
                 1 => (1 << 17, 1 << 24),
+                2 => (1 << 9, 1 << 24),
                 _ => (1 << 30, 1 << 31),
             };
             let (cx, cy) = (next(1 << 21), next(1 << 21));
@@ -1921,10 +1940,15 @@ mod tests {
             if let Some(p) = plane_i64(v, s, |z| z) {
                 assert_eq!(p, wide, "{v:?} s {s}");
                 fast += 1;
+                let area = crate::raster::signed_area2(v).unsigned_abs();
+                tiny += (n == 3 && area > 0 && area < 1 << 24) as u32;
             }
             planes += wide.is_some() as u32;
         }
-        assert!(fast > 30_000 && planes > 40_000, "{fast} fast of {planes}");
+        assert!(
+            fast > 30_000 && planes > 40_000 && tiny > 5_000,
+            "{fast} fast of {planes}, {tiny} tiny"
+        );
     }
     /// [`DepthPlane::column_0`] stepped to row `j`, then to column `i`, equals
     /// [`DepthPlane::at`] bit for bit (f32: in value at column 0, and within 4 units of the
