@@ -1435,8 +1435,13 @@ impl<
         // Not tried on the row after one where spans met: overlap comes in runs of rows (the
         // painting up to the meeting would be done again), until a row is swept without any.
         let (mut cur, mut k) = (0i32, 0usize);
-        if !self.row.more && !G::KEEPS && apart {
-            match self.paint_apart() {
+        let painted = match (!G::KEEPS && apart, self.row.more) {
+            (false, _) => None,
+            (true, false) => Some(self.paint_apart::<false, false>(vertices)),
+            (true, true) => self.paint_apart_more(vertices, want_depth),
+        };
+        if let Some(painted) = painted {
+            match painted {
                 Ok(painted_to) => {
                     let from = self.sorted.first().map_or(w, |&key| key_left(key).max(0));
                     self.row.fresh = (from, painted_to);
@@ -1499,30 +1504,59 @@ impl<
         self.row.fresh = (from, painted_to);
     }
 
+    /// [`Self::paint_apart`] for a row that wants depths or the affine cue too; `None` for one
+    /// that wants both, or exact depths (the sweep paints those).
+    fn paint_apart_more(
+        &mut self,
+        vertices: &[RasterVertex<N>],
+        want_depth: bool,
+    ) -> Option<Result<i32, (i32, usize)>> {
+        match (want_depth, self.row.cue) {
+            _ if self.row.exact() => None,
+            (true, false) => Some(self.paint_apart::<true, false>(vertices)),
+            (false, true) => Some(self.paint_apart::<false, true>(vertices)),
+            _ => None,
+        }
+    }
+
     /// Paints the row's spans in the order of the keys while each begins at or after the end of
     /// the one before (none meets another: each is the visible surface wherever it lies), the
     /// columns between them with the background, as the sweep would; returns where the last
     /// span painted ends. `Err((cur, k))`: a span meets the one before it, painted from `cur`
     /// and taken at key `k` — the sweep resumes there (columns before `cur` are done, and it
-    /// repaints every column from `cur` on).
+    /// repaints every column from `cur` on). What the sweep's [`Self::paint_more`] adds, as it
+    /// does: `DEPTH`, the depth row (each span its plane's depths, the background the format's
+    /// maximum) for a row whose depths are read (the perspective-correct cue, a sink that
+    /// reads depth); `CUE`, the affine depth cue across each span.
     #[inline(never)]
-    fn paint_apart(&mut self) -> Result<i32, (i32, usize)> {
+    fn paint_apart<const DEPTH: bool, const CUE: bool>(
+        &mut self,
+        vertices: &[RasterVertex<N>],
+    ) -> Result<i32, (i32, usize)> {
         let Sweep {
             sorted,
             active,
             intensity,
             polygons,
             row,
+            depth,
+            cues,
             ..
         } = self;
         // (Within the colour row: `Config::validate` checked the width.)
         let w = row.width.min(W as i32);
-        let span = |key: u32| active.get(key as u16 as usize);
+        let depths = depth.parts().0;
+        let background_depth = |depths: &mut [N], x0: i32, x1: i32| {
+            if let Some(run) = depths.get_mut(x0 as usize..x1 as usize) {
+                run.fill(N::MAX);
+            }
+        };
         // Painted up to `cur`; the last span with columns ends at `end` (unclamped).
         let (mut cur, mut end) = (0i32, i32::MIN);
         let mut keys = sorted.iter();
         while let Some(&key) = keys.next() {
-            let Some(a) = span(key) else {
+            let slot = key as u16 as usize;
+            let Some(a) = active.get_mut(slot) else {
                 continue; // cannot happen: keys hold occupied slots
             };
             let (xl, xr) = (a.xl(), a.xr());
@@ -1540,13 +1574,34 @@ impl<
             end = xr;
             if cur < x0 {
                 fill_background(intensity, row.stale, row.background, cur, x0);
+                if DEPTH {
+                    background_depth(depths, cur, x0);
+                }
             }
             if let Some(run) = intensity.get_mut(x0 as usize..x1 as usize) {
                 fill_run(run, a.color(polygons));
             }
+            if DEPTH {
+                let planes = Planes {
+                    vertices,
+                    polygons,
+                    s: row.s,
+                    y: row.y,
+                };
+                planes.ensure(a);
+                if let Some(run) = depths.get_mut(x0 as usize..x1 as usize) {
+                    fill_depth(run, a, row.y, x0);
+                }
+            }
+            if let (true, Some(e)) = (CUE, cues.at(slot)) {
+                cue_span(intensity, a, e, x0, x1);
+            }
             cur = x1;
         }
         fill_background(intensity, row.stale, row.background, cur, w);
+        if DEPTH {
+            background_depth(depths, cur, w);
+        }
         Ok(cur)
     }
 

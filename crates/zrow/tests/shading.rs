@@ -86,6 +86,53 @@ fn perspective_cue_gives_every_method_the_same_frame() {
 }
 
 #[test]
+fn perspective_cue_on_rows_with_gaps_equals_the_z_buffer() {
+    // The torus and the interlocked rings over a grey background: rows whose spans lie apart
+    // with background between them (the hole, the gaps between the rings), painted by the
+    // scan-line's span-by-span path with their depths. A gap's depths must be the
+    // background's, whatever the row before left there, or the cue would shade the grey.
+    let grey = Rgb565::new(12, 24, 12);
+    type Draw<'a> = dyn FnMut(&dyn zrow::Scene<Q16_16>, &Config, &mut [Rgb565]) + 'a;
+    let render = |r: &mut Draw<'_>, scene| {
+        let mut px = vec![Rgb565::BLACK; S * S];
+        with_preset_scene::<Q16_16, _>(scene, by_name("q16").unwrap(), |sc, cfg, _| {
+            let cfg = Config {
+                background: grey,
+                ..*cfg
+            };
+            r(sc, &cfg, &mut px)
+        })
+        .unwrap();
+        px
+    };
+    let (mut scan, mut z) = (
+        Box::new(Scanline::<Q16_16, S, 1024, 1024, 128>::new()),
+        Box::new(ZBuffer::<Q16_16, S, S>::new()),
+    );
+    for scene in ["mesh1k", "interlocked"] {
+        let a = render(
+            &mut |sc, cfg, px| {
+                scan.render(sc, cfg, &mut FrameBuffer::new(px, S)).unwrap();
+            },
+            scene,
+        );
+        let b = render(
+            &mut |sc, cfg, px| {
+                z.render(sc, cfg, &mut FrameBuffer::new(px, S)).unwrap();
+            },
+            scene,
+        );
+        let diff = a.iter().zip(&b).filter(|(a, b)| a != b).count();
+        assert_eq!(diff, 0, "{scene}: {diff} pixels differ from the z-buffer's");
+        let background = a.iter().filter(|&&c| c == grey).count();
+        assert!(
+            background > S * S / 4,
+            "{scene}: {background} background pixels"
+        );
+    }
+}
+
+#[test]
 fn affine_cue_is_unsupported_off_the_scan_line_and_fails_before_any_row() {
     struct Count(usize);
     impl zrow::RowSink<Q16_16> for Count {
