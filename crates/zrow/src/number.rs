@@ -827,6 +827,12 @@ macro_rules! impl_fixed {
                 if d <= 0 {
                     return $t::ZERO;
                 }
+                // (A 32-bit core, a denominator below 2^24: in hardware digits, the same bits.)
+                if cfg!(target_pointer_width = "32") {
+                    if let Some(q) = div::div_round_shifted_signed(n, $t::FRAC_NBITS, d) {
+                        return $t::from_bits(q);
+                    }
+                }
                 $t::from_bits(sat_i64(div::div_round(
                     (n as i64) << $t::FRAC_NBITS,
                     d as i64,
