@@ -90,6 +90,7 @@ use crate::number::Scalar;
 use crate::polygons::PolygonTable;
 use crate::raster::{color_at, Config};
 use crate::scene::Scene;
+use crate::shading::Interpolation;
 use crate::sink::{Row, RowSink};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 
@@ -392,7 +393,8 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize>
         }
     }
 
-    /// Sends the band's rows `y0..y1`: colours from the owners, depths from their planes.
+    /// Sends the band's rows `y0..y1`: colours from the owners, depths from their planes
+    /// where they are read.
     fn send_band<K: RowSink<N>>(
         &mut self,
         y0: usize,
@@ -403,33 +405,32 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize>
         sink: &mut K,
     ) -> Result<(), K::Error> {
         let polys = self.table.polygons();
+        // Depths only where they are read: by the sink, or by the perspective-correct cue.
+        let perspective = cue.filter(|c| c.interpolation == Interpolation::PerspectiveCorrect);
+        let depths = K::WANTS_DEPTH || perspective.is_some();
         for (k, orow) in self.owner.iter().enumerate().take(y1 - y0) {
             let y = (y0 + k) as i32;
-            let (mut last, mut z) = (NONE, N::MAX);
-            let pixels = orow
-                .iter()
-                .zip(&mut self.color_row)
-                .zip(&mut self.depth_row);
-            for (x, ((&o, c), d)) in pixels.enumerate().take(w) {
-                // NONE ≥ P > every index, so an empty pixel finds no polygon.
-                match polys.get(o as usize) {
-                    None => (*c, z) = (background, N::MAX),
-                    Some(p) => {
-                        *c = color_at(p.color, p.intensity(), x as i32, y);
-                        z = if o == last {
-                            z.step(p.plane.dzdx, 1)
-                        } else {
-                            p.plane.at(x as i32, y)
-                        };
-                    }
+            if !depths {
+                for (x, (&o, c)) in orow.iter().zip(&mut self.color_row).enumerate().take(w) {
+                    *c = match polys.get(o as usize) {
+                        None => background,
+                        Some(p) => color_at(p.color, p.intensity(), x as i32, y),
+                    };
                 }
-                *d = z;
-                last = o;
+                sink.write_row(&Row {
+                    y: y as u16,
+                    color: &self.color_row[..w],
+                    depth: &[],
+                })?;
+                continue;
             }
-            crate::shading::Cue::shade_row_if_perspective(
-                cue,
-                &self.depth_row[..w],
-                &mut self.color_row[..w],
+            depth_row(
+                polys,
+                orow,
+                (&mut self.color_row[..w], &mut self.depth_row[..w]),
+                y,
+                background,
+                perspective.as_ref(),
             );
             #[cfg(feature = "exact-depth")]
             if crate::sink::EXACT_DEPTH && K::WANTS_DEPTH {
@@ -444,6 +445,42 @@ impl<N: Scalar, const W: usize, const B: usize, const P: usize, const E: usize>
             })?;
         }
         Ok(())
+    }
+}
+
+/// One row's colours and depths from its owners (`orow`, [`NONE`] where no polygon is): each
+/// pixel its polygon's colour and plane depth (stepped along a run of one owner), or the
+/// background at the format's maximum depth; shaded by the perspective-correct cue if there
+/// is one. Out of line: the band's loops keep their registers.
+#[inline(never)]
+fn depth_row<N: Scalar>(
+    polys: &[crate::polygons::Stored<N>],
+    orow: &[u16],
+    (colors, depths): (&mut [Rgb565], &mut [N]),
+    y: i32,
+    background: Rgb565,
+    perspective: Option<&crate::shading::Cue<N>>,
+) {
+    let (mut last, mut z) = (NONE, N::MAX);
+    for (x, ((&o, c), d)) in orow.iter().zip(colors).zip(depths).enumerate() {
+        // NONE ≥ P > every index, so an empty pixel finds no polygon.
+        match polys.get(o as usize) {
+            None => (*c, z) = (background, N::MAX),
+            Some(p) => {
+                z = if o == last {
+                    z.step(p.plane.dzdx, 1)
+                } else {
+                    p.plane.at(x as i32, y)
+                };
+                let color = color_at(p.color, p.intensity(), x as i32, y);
+                *c = match perspective {
+                    Some(cue) => crate::geometry::shade(color, cue.at_depth(z)),
+                    None => color,
+                };
+            }
+        }
+        *d = z;
+        last = o;
     }
 }
 
