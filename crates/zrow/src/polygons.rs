@@ -22,7 +22,9 @@ use crate::error::{Error, Table};
 use crate::number::{DepthPlane, Scalar};
 #[cfg(feature = "exact-depth")]
 use crate::raster::exact_plane;
-use crate::raster::{fill_run, paint_run, setup, signed_area2, Config, Cull, Edge, Side};
+use crate::raster::{
+    fill_run, paint_run, setup_into, signed_area2, Config, Cull, Edge, SetupPolygon, Side,
+};
 use crate::scene::{IntensityPlane, Scene, VertexBuffer};
 use crate::sink::{Row, RowSink};
 use embedded_graphics_core::pixelcolor::Rgb565;
@@ -126,13 +128,15 @@ impl<N: Scalar, const P: usize, const E: usize> PolygonTable<N, P, E> {
         #[cfg(not(feature = "exact-depth"))]
         let _ = exact;
         let mut buf = VertexBuffer::new(&mut []);
+        // Set up in place, polygon after polygon (no edge table moved by value).
+        let mut sp = SetupPolygon::empty();
         scene.polygons(&setup_cfg, &mut buf, &mut |poly| {
             #[cfg(feature = "gouraud")]
             let intensity = poly.intensity;
             let poly = &poly.to_raster()?;
-            let Some(sp) = setup(poly, &setup_cfg)? else {
+            if !setup_into(poly, &setup_cfg, &mut sp)? {
                 return Ok(());
-            };
+            }
             polys += 1;
             edges += sp.edges.len() as u32;
             let (mut xmin, mut xmax) = (i32::MAX, i32::MIN);
@@ -176,7 +180,7 @@ impl<N: Scalar, const P: usize, const E: usize> PolygonTable<N, P, E> {
                 edge_count: sp.edges.len() as u8,
             };
             if edge_table.len() + sp.edges.len() <= E && table.push(entry).is_ok() {
-                for e in sp.edges {
+                for &e in &sp.edges {
                     // Cannot fail: room checked above.
                     let _ = edge_table.push(e);
                 }

@@ -386,6 +386,25 @@ pub struct SetupPolygon<N> {
     pub edges: heapless::Vec<Edge, MAX_POLYGON_VERTICES>,
 }
 
+impl<N: Scalar> SetupPolygon<N> {
+    /// No polygon (zero plane, no rows' edges): what [`setup_into`] fills in.
+    pub fn empty() -> Self {
+        SetupPolygon {
+            plane: DepthPlane {
+                z_ref: N::ZERO,
+                dzdx: N::ZERO,
+                dzdy: N::ZERO,
+                i_ref: 0,
+                j_ref: 0,
+            },
+            color: Rgb565::new(0, 0, 0),
+            first_row: 0,
+            last_row: 0,
+            edges: heapless::Vec::new(),
+        }
+    }
+}
+
 /// Twice the signed area of a snapped polygon (shoelace; positive = clockwise on the display,
 /// whose y axis points down).
 pub fn signed_area2(v: &[RasterVertex<impl Copy>]) -> i64 {
@@ -731,11 +750,24 @@ pub fn setup<N: Scalar>(
     poly: &RasterPolygon<N>,
     cfg: &Config,
 ) -> Result<Option<SetupPolygon<N>>, Error> {
+    let mut sp = SetupPolygon::empty();
+    Ok(setup_into(poly, cfg, &mut sp)?.then_some(sp))
+}
+
+/// [`setup`] into `out`, which a method keeps from polygon to polygon: nothing a few hundred
+/// bytes large is returned by value (on a 32-bit core each such move is a `memcpy` of the
+/// edge table). `Ok(true)` where [`setup`] gives `Some` (then `out` is that polygon),
+/// `Ok(false)` where it gives `None` (then `out` is not one to draw).
+pub fn setup_into<N: Scalar>(
+    poly: &RasterPolygon<N>,
+    cfg: &Config,
+    out: &mut SetupPolygon<N>,
+) -> Result<bool, Error> {
     let v = &poly.vertices[..];
     let Some(o) = outline(v, cfg, poly.face)? else {
-        return Ok(None);
+        return Ok(false);
     };
-    let mut edges = heapless::Vec::new();
+    out.edges.clear();
     for k in 0..v.len() {
         let (p, q) = (&v[k], &v[(k + 1) % v.len()]);
         if p.y == q.y {
@@ -751,21 +783,31 @@ pub fn setup<N: Scalar>(
         };
         if let Some(e) = edge_between(top, bottom, side, cfg) {
             // Cannot overflow: a polygon has at most MAX_POLYGON_VERTICES edges.
-            let _ = edges.push(e);
+            let _ = out.edges.push(e);
         }
     }
-    let mut ordered = [RasterVertex::default(); MAX_POLYGON_VERTICES];
-    let n = canonical(v, o.clockwise, &mut ordered);
-    let Some(plane) = N::depth_plane(&ordered[..n], cfg.subpixel_bits as u32) else {
-        return Ok(None);
+    let s = cfg.subpixel_bits as u32;
+    let plane = if let [a, b, c] = *v {
+        // A triangle in `canonical` order without its 16-corner scratch (cleared per
+        // polygon, it cost a `memset`): from its top-left corner, clockwise.
+        let t = [a, b, c];
+        let start = (0..3).min_by_key(|&k| (t[k].y, t[k].x)).unwrap_or(0);
+        let (next, last) = match o.clockwise {
+            true => ((start + 1) % 3, (start + 2) % 3),
+            false => ((start + 2) % 3, (start + 1) % 3),
+        };
+        N::depth_plane(&[t[start], t[next], t[last]], s)
+    } else {
+        let mut ordered = [RasterVertex::default(); MAX_POLYGON_VERTICES];
+        let n = canonical(v, o.clockwise, &mut ordered);
+        N::depth_plane(&ordered[..n], s)
     };
-    Ok(Some(SetupPolygon {
-        plane,
-        color: poly.color,
-        first_row: o.first_row,
-        last_row: o.last_row,
-        edges,
-    }))
+    let Some(plane) = plane else {
+        return Ok(false);
+    };
+    (out.plane, out.color) = (plane, poly.color);
+    (out.first_row, out.last_row) = (o.first_row, o.last_row);
+    Ok(true)
 }
 
 /// The exact plane ([`Scalar::exact_plane`]) of a polygon: the vertices [`setup`] fits its

@@ -5,7 +5,7 @@
 
 use crate::error::Error;
 use crate::number::Scalar;
-use crate::raster::{setup, Config, RasterVertex};
+use crate::raster::{setup_into, Config, RasterVertex, SetupPolygon};
 use crate::scene::{Scene, VertexBuffer};
 
 /// The capacities a scene needs under one configuration.
@@ -180,8 +180,9 @@ pub fn requirements_with<N: Scalar>(
         let mut open = 0u32;
         let first_pass = base == 0;
         let mut buf = VertexBuffer::new(&mut *slots);
+        let mut sp = SetupPolygon::empty();
         scene.polygons(cfg, &mut buf, &mut |poly| {
-            if let Some(sp) = setup(&poly.to_raster()?, cfg)? {
+            if setup_into(&poly.to_raster()?, cfg, &mut sp)? {
                 if first_pass {
                     req.polygons += 1;
                     req.edges += sp.edges.len() as u32;

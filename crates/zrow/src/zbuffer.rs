@@ -28,7 +28,7 @@ use crate::number::Scalar;
 use crate::polygons::walk_edges;
 #[cfg(feature = "exact-depth")]
 use crate::raster::exact_plane;
-use crate::raster::{color_at, setup, Config};
+use crate::raster::{color_at, setup_into, Config, SetupPolygon};
 use crate::scene::{Scene, VertexBuffer};
 use crate::sink::{Row, RowSink};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
@@ -100,11 +100,13 @@ impl<N: Scalar, const W: usize, const H: usize> ZBuffer<N, W, H> {
         #[cfg(feature = "exact-depth")]
         let exact = &mut self.exact;
         let mut buf = VertexBuffer::new(&mut []);
+        // Set up in place, polygon after polygon (no edge table moved by value).
+        let mut sp = SetupPolygon::empty();
         scene.polygons(cfg, &mut buf, &mut |poly| {
             let raster = poly.to_raster()?;
-            let Some(sp) = setup(&raster, cfg)? else {
+            if !setup_into(&raster, cfg, &mut sp)? {
                 return Ok(());
-            };
+            }
             #[cfg(feature = "exact-depth")]
             let fine = match K::WANTS_DEPTH {
                 true => exact_plane(&raster, cfg),
@@ -113,12 +115,14 @@ impl<N: Scalar, const W: usize, const H: usize> ZBuffer<N, W, H> {
             stats.polygons += 1;
             stats.edges += sp.edges.len() as u32;
             let (first, last) = (sp.first_row as i32, sp.last_row as i32);
+            // (In registers for the rows: `sp` is the closure's, behind a reference.)
+            let (plane, c) = (sp.plane, sp.color);
             walk_edges(&sp.edges, s, first, last, |y, xl, xr| {
                 let (x0, x1) = (xl.max(0), xr.min(w as i32));
                 if x0 < x1 {
                     let (zrow, crow) = (&mut depth[y as usize], &mut intensity[y as usize]);
-                    let z = sp.plane.at(x0, y);
-                    let (c, dzdx) = (sp.color, sp.plane.dzdx);
+                    let z = plane.at(x0, y);
+                    let dzdx = plane.dzdx;
                     #[cfg(feature = "exact-depth")]
                     if let Some(e) = &fine {
                         // A sink that reads depth: each pixel won gets the exact depth too.
