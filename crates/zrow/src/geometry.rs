@@ -132,19 +132,21 @@ fn clip_plane<V: Copy>(
     Ok(())
 }
 
-/// Gathers a face's vertices, checking its size and indices.
+/// Gathers a face's vertices into `out` (the caller's, kept from face to face: nothing is
+/// returned by value), checking its size and indices.
 fn gather<N: Scalar, I: MeshIndex>(
     mesh: &Mesh<'_, N, I>,
     face: &Face<'_, I>,
     no: u32,
-) -> Result<Poly<Vec3<N>>, Error> {
+    out: &mut Poly<Vec3<N>>,
+) -> Result<(), Error> {
     if face.indices.len() < 3 {
         return Err(Error::TooFewVertices { face: no });
     }
     if face.indices.len() > MAX_FACE_VERTICES {
         return Err(Error::TooManyVertices { face: no });
     }
-    let mut out = Vec::new();
+    out.clear();
     for &i in face.indices {
         let v = mesh.vertices.get(i.index()).ok_or(Error::IndexOutOfRange {
             face: no,
@@ -155,7 +157,7 @@ fn gather<N: Scalar, I: MeshIndex>(
         }
         let _ = out.push(v); // fits: checked against MAX_FACE_VERTICES above
     }
-    Ok(out)
+    Ok(())
 }
 
 /// What a vertex slot holds when its vertex could not be projected (outside the view volume
@@ -646,6 +648,10 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ScreenScene<'_, N, I> {
             }
         }
         let mut corners = [0u32; MAX_POLYGON_VERTICES];
+        // A face's vertices and their snapped corners, kept from face to face (no copy or
+        // clearing of either per face).
+        let mut poly: Poly<Vec3<N>> = Vec::new();
+        let mut v = [RasterVertex::default(); MAX_POLYGON_VERTICES];
         // `cfg!` first: a constant the compiler drops the facet code on, in a build without
         // the feature (the call alone left 1.4 KB of it in the Cortex-M4 firmware's flash).
         let facets = cfg!(feature = "lines") && cfg.shading.is_facets();
@@ -680,14 +686,13 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ScreenScene<'_, N, I> {
                 emit_indexed(buf, &mut corners[..n], out, f)?;
                 continue;
             }
-            let mut poly = gather(mesh, face, no)?;
+            gather(mesh, face, no, &mut poly)?;
             if base.is_none()
                 && poly
                     .iter()
                     .all(|p| p.x >= lo && p.x <= hx && p.y >= lo && p.y <= hy)
             {
                 // No room in the buffer, but nothing to clip either.
-                let mut v = [RasterVertex::default(); MAX_POLYGON_VERTICES];
                 for (d, p) in v.iter_mut().zip(&poly) {
                     *d = snap(p, s, no)?;
                 }
@@ -697,7 +702,6 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ScreenScene<'_, N, I> {
             }
             clip_guard_band(&mut poly, cfg, no)?;
             if poly.len() >= 3 {
-                let mut v = [RasterVertex::default(); MAX_POLYGON_VERTICES];
                 for (d, p) in v.iter_mut().zip(&poly) {
                     *d = snap(p, s, no)?;
                 }
