@@ -129,6 +129,15 @@ pub trait Scalar: Copy + PartialOrd + Default + core::fmt::Debug + 'static {
     fn to_f32(self) -> f32;
     /// Converts to `f64`, exactly (every format fits an `f64`'s 53-bit mantissa).
     fn to_f64(self) -> f64;
+    /// `self · 2^e` as an integer, where it is one and below 2^62 in magnitude: fixed point
+    /// with `e` at least its fractional bits, in integer arithmetic. `None` otherwise (always
+    /// in floating point), for the caller to take `f64`'s way: where this answers,
+    /// `self.to_f64() · 2^e` is the same integer.
+    #[doc(hidden)]
+    fn scaled_exact(self, e: i32) -> Option<i64> {
+        let _ = e;
+        None
+    }
     /// Whether the value is a number (always, for fixed point; not NaN or ±∞ for `f32`).
     fn is_finite(self) -> bool;
     /// Saturating addition.
@@ -862,6 +871,15 @@ macro_rules! impl_fixed {
             }
             fn to_f64(self) -> f64 {
                 self.to_num::<f64>()
+            }
+            #[inline]
+            fn scaled_exact(self, e: i32) -> Option<i64> {
+                let k = e.checked_sub($t::FRAC_NBITS as i32)?;
+                if !(0..=62).contains(&k) {
+                    return None;
+                }
+                let v = (self.to_bits() as i64).checked_mul(1 << k)?;
+                (v.unsigned_abs() < 1 << 62).then_some(v)
             }
             fn is_finite(self) -> bool {
                 true
@@ -1909,6 +1927,32 @@ mod tests {
         for m in ((1u32 << 29)..(1 << 31)).step_by(997).chain(ends) {
             assert_eq!(rsqrt_steps_32(m), rsqrt_steps_64(m), "m {m}");
         }
+    }
+
+    #[test]
+    fn scaled_exact_is_the_f64_product_where_it_answers() {
+        // Both fixed formats, values of every size and sign, exponents around and beyond
+        // their fractional bits: where the integer way answers it is `to_f64() · 2^e`
+        // (exact in f64: at most 32 significant bits), and it answers for every exponent
+        // from the fractional bits up while the product stays below 2^62.
+        fn check<N: Scalar>(bits: i32, frac: i32, e: i32, v: N) {
+            let want = v.to_f64() * 2f64.powi(e);
+            match v.scaled_exact(e) {
+                Some(got) => assert_eq!(got as f64, want, "{bits} · 2^{e}"),
+                None => assert!(
+                    e < frac || want.abs() >= 2f64.powi(62),
+                    "{bits} · 2^{e} declined"
+                ),
+            }
+        }
+        let mut seed = 0x5851_f42d_4c95_7f2du64;
+        for k in 0..100_000 {
+            let bits = (xorshift64(&mut seed) as i32) >> (k % 32);
+            let e = k % 70 - 4;
+            check(bits, 16, e, Q16_16::from_bits(bits));
+            check(bits, 8, e, crate::Q24_8::from_bits(bits));
+        }
+        assert_eq!(0.5f32.scaled_exact(8), None);
     }
 
     #[test]
