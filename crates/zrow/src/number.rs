@@ -26,6 +26,7 @@
 use crate::raster::RasterVertex;
 
 mod div;
+pub(crate) use div::divmod_u64_u32;
 mod dot2;
 mod trig;
 

@@ -264,7 +264,7 @@ impl<N: Scalar, const P: usize, const E: usize> PolygonTable<N, P, E> {
             self.edge_at(i, Side::Left, y),
             self.edge_at(i, Side::Right, y),
         ) {
-            (Some(l), Some(r)) => (l.dda_at(y, s).x(), r.dda_at(y, s).x()),
+            (Some(l), Some(r)) => (l.x_at(y, s), r.x_at(y, s)),
             _ => (0, 0),
         }
     }

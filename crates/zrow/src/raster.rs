@@ -216,31 +216,60 @@ pub(crate) fn row_at_or_below(y: i32, s: u32, h: i32) -> i32 {
 impl Edge {
     /// The state of the exact walk at `row` (which must lie in `first_row..=last_row`).
     pub fn dda_at(&self, row: i32, s: u32) -> Dda {
-        // Coordinates lie within the guard band (|x|, |y| < 2^21 sub-pixels with S ≤ 8), so
-        // dy·2^S and the step fit 32 bits; so does the first crossing when the edge starts
-        // less than two rows above `row` (every edge but those clamped to the top of the
-        // screen): one 32-bit division each instead of 64-bit library calls. Same results.
+        match self.crossing_at(row, s) {
+            Some((x, r, den)) => {
+                // The step: dx·2^S over dy·2^S, the same quotient as dx over dy.
+                let qs = self.dx.div_euclid(self.dy);
+                let rs = (self.dx - qs * self.dy) << s;
+                Dda::new(x, r, qs, rs, den)
+            }
+            None => self.dda_at_wide(row, s),
+        }
+    }
+
+    /// The column of [`Edge::dda_at`]`(row, s)` ([`Dda::x`]) alone: where a method asks for a
+    /// polygon's span at one row, the walk's step (a second division) is not needed.
+    pub fn x_at(&self, row: i32, s: u32) -> i32 {
+        match self.crossing_at(row, s) {
+            Some((x, _, _)) => x as i16 as i32, // as `Dda::x` keeps it
+            None => self.dda_at_wide(row, s).x(),
+        }
+    }
+
+    /// The walk's first crossing at `row`: its column, remainder and denominator (`dy·2^S`),
+    /// for an edge within the guard band (|x|, |y| < 2^21 sub-pixels with S ≤ 8, so `dy·2^S`
+    /// fits 32 bits) at or below its top; `None` otherwise (the 64-bit walk then). Less than
+    /// two rows below the top (every edge but those clamped to the top of the screen, or
+    /// asked for a later row) the numerator fits 32 bits: one 32-bit division; further down
+    /// it is 64-bit, divided by the 32-bit denominator in hardware digits
+    /// ([`crate::number::divmod_u64_u32`]) instead of a 64-bit library division. The same
+    /// results as [`Edge::dda_at_wide`].
+    #[inline(always)]
+    fn crossing_at(&self, row: i32, s: u32) -> Option<(i32, i32, i32)> {
         let (h, mask) = (1i32 << s >> 1, (1i32 << s) - 1);
         let t = (row << s) + h - self.y0; // how far below the top the sample line is
         let small = |v: i32| v.unsigned_abs() < 1 << 21;
-        if (0..512).contains(&t)
-            && self.dy > 0
-            && small(self.dy)
-            && small(self.dx)
-            && small(self.x0)
-            && s <= 8
+        if !(t >= 0 && self.dy > 0 && small(self.dy) && small(self.dx) && small(self.x0) && s <= 8)
         {
-            let den = self.dy << s;
-            let qs = self.dx.div_euclid(self.dy);
-            let rs = (self.dx - qs * self.dy) << s;
-            // x0 − h = qx·2^S + fx; the crossing's column is qx + ceil((fx·dy + t·dx) / den).
-            let x0h = self.x0 - h;
-            let (qx, fx) = (x0h >> s, x0h & mask);
+            return None;
+        }
+        let den = self.dy << s;
+        // x0 − h = qx·2^S + fx; the crossing's column is qx + ceil((fx·dy + t·dx) / den).
+        let x0h = self.x0 - h;
+        let (qx, fx) = (x0h >> s, x0h & mask);
+        if t < 512 {
             let num = fx * self.dy + t * self.dx;
             let q = div_ceil_positive(num, den);
-            return Dda::new(qx + q, q * den - num, qs, rs, den);
+            return Some((qx + q, q * den - num, den));
         }
-        self.dda_at_wide(row, s)
+        let num = fx as i64 * self.dy as i64 + t as i64 * self.dx as i64;
+        // ceil(num / den) = −floor(−num / den), from the magnitude's quotient and remainder.
+        let (q, r) = crate::number::divmod_u64_u32(num.unsigned_abs(), den as u32);
+        let q = match num > 0 {
+            true => q as i64 + (r != 0) as i64,
+            false => -(q as i64),
+        };
+        Some(((qx as i64 + q) as i32, (q * den as i64 - num) as i32, den))
     }
 
     /// [`Edge::dda_at`] in 64-bit arithmetic, for any row.
@@ -871,10 +900,11 @@ mod tests {
 
     #[test]
     fn dda_fast_path_equals_the_wide_one() {
-        // Edges of every slope and position, first rows just below their tops (the fast
-        // path) and far below (the wide one), every sub-pixel precision.
+        // Edges of every slope and position, first rows just below their tops (the 32-bit
+        // path) and far below (a 64-bit numerator), every sub-pixel precision: the walk, and
+        // its column alone, as the wide path gives them.
         let mut next = uniform(0x2545_f491_4f6c_dd1d);
-        let mut fast = 0;
+        let (mut fast, mut far) = (0, 0);
         for _ in 0..20_000 {
             let s = 1 + (next(3) + 3) as u32 % 8;
             let (x0, y0) = (next(1 << 20) as i32, next(1 << 20) as i32);
@@ -884,16 +914,21 @@ mod tests {
             for row in [first, first + 1, first + next(3000).abs() as i32] {
                 let t = (row << s) + (1 << s >> 1) - y0;
                 fast += (t < 512) as u32;
+                far += (t >= 512) as u32;
                 assert_eq!(
                     e.dda_at(row, s),
                     e.dda_at_wide(row, s),
                     "{e:?} row {row} s {s}"
                 );
+                assert_eq!(e.x_at(row, s), e.dda_at_wide(row, s).x(), "{e:?} row {row}");
                 let (x1, y1) = (x0 + dx, y0 + dy);
                 assert_eq!(Dda::between(x0, y0, x1, y1, row, s), e.dda_at_wide(row, s));
             }
         }
-        assert!(fast > 20_000, "the fast path ran {fast} times");
+        assert!(
+            fast > 20_000 && far > 10_000,
+            "{fast} near the top, {far} far below"
+        );
     }
 
     /// The corners read in place come out as `canonical` orders a gathered copy: every
