@@ -241,8 +241,8 @@ fn div_fixed_wide(n: i32, shift: u32, d: i32) -> Option<i32> {
 /// `n · 2^shift / d` rounded to nearest, ties away from zero, for a divisor of either sign:
 /// [`div_round_shifted`] by `|d|`, negated for a negative `d` (the rounding is symmetric). The
 /// result of [`div_round`]`((n as i64) << shift, d as i64)` where this gives one; `None` where
-/// `d` is 0 or `|d|` not below 2^24, `shift` not a multiple of 8, or the quotient does not fit an `i32`
-/// (then the caller divides the general way, which decides).
+/// `d` is 0 or `|d|` not below 2^24, `shift` not a multiple of 8, or the quotient does not
+/// fit an `i32` (then the caller divides the general way, which decides).
 #[inline]
 pub(crate) fn div_round_shifted_signed(n: i32, shift: u32, d: i32) -> Option<i32> {
     let ud = d.unsigned_abs();
