@@ -750,6 +750,21 @@ pub fn canonical<N: Copy>(
     n
 }
 
+/// [`canonical`] of a triangle, returned by value: no scratch of [`MAX_POLYGON_VERTICES`]
+/// corners to clear for three.
+#[inline]
+pub(crate) fn canonical_triangle<N: Copy>(
+    t: [RasterVertex<N>; 3],
+    clockwise: bool,
+) -> [RasterVertex<N>; 3] {
+    let start = (0..3).min_by_key(|&k| (t[k].y, t[k].x)).unwrap_or(0);
+    let (next, last) = match clockwise {
+        true => ((start + 1) % 3, (start + 2) % 3),
+        false => ((start + 2) % 3, (start + 1) % 3),
+    };
+    [t[start], t[next], t[last]]
+}
+
 /// [`canonical`] of the `n` corners `corner(0..n)`, read where they are (a polygon kept as
 /// indices: no gathered copy of its corners, up to 216 bytes of stack in a 32-bit format).
 #[inline]
@@ -817,15 +832,8 @@ pub fn setup_into<N: Scalar>(
     }
     let s = cfg.subpixel_bits as u32;
     let plane = if let [a, b, c] = *v {
-        // A triangle in `canonical` order without its 16-corner scratch (cleared per
-        // polygon, it cost a `memset`): from its top-left corner, clockwise.
-        let t = [a, b, c];
-        let start = (0..3).min_by_key(|&k| (t[k].y, t[k].x)).unwrap_or(0);
-        let (next, last) = match o.clockwise {
-            true => ((start + 1) % 3, (start + 2) % 3),
-            false => ((start + 2) % 3, (start + 1) % 3),
-        };
-        N::depth_plane(&[t[start], t[next], t[last]], s)
+        // (Without `canonical`'s 16-corner scratch, cleared per polygon: a `memset`.)
+        N::depth_plane(&canonical_triangle([a, b, c], o.clockwise), s)
     } else {
         let mut ordered = [RasterVertex::default(); MAX_POLYGON_VERTICES];
         let n = canonical(v, o.clockwise, &mut ordered);
@@ -931,8 +939,9 @@ mod tests {
         );
     }
 
-    /// The corners read in place come out as `canonical` orders a gathered copy: every
-    /// corner count, both windings, ties in y broken by x (a grid of few values makes many).
+    /// The corners read in place (and a triangle by value) come out as `canonical` orders a
+    /// gathered copy: every corner count, both windings, ties in y broken by x (a grid of few
+    /// values makes many).
     #[test]
     fn canonical_with_orders_as_canonical() {
         let mut next = uniform(0x6a09_e667_f3bc_c908);
@@ -954,6 +963,10 @@ mod tests {
                 let m = canonical(&v[..n], clockwise, &mut want);
                 assert_eq!(canonical_with(n, |k| v[k], clockwise, &mut got), m);
                 assert_eq!(got[..m], want[..m], "{:?} clockwise {clockwise}", &v[..n]);
+                if n == 3 {
+                    let t = canonical_triangle([v[0], v[1], v[2]], clockwise);
+                    assert_eq!(t[..], want[..3], "{:?} clockwise {clockwise}", &v[..3]);
+                }
             }
         }
     }
