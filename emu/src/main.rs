@@ -51,7 +51,7 @@ use cortex_m_semihosting::{debug, hprintln};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use zrow::presets::{DepthStore, Preset, PRESETS};
 use zrow::{Config, Renderer, Scanline, Scene, Q16_16};
-use zrow_scenes::{Format, FrameHash, FOLEY, LINES, NAMES, PRESET_SCENES};
+use zrow_scenes::{Format, FrameHash, DEMOS, FOLEY, LINES, NAMES, PRESET_SCENES};
 
 include!("methods.rs");
 include!("presets.rs");
@@ -465,6 +465,12 @@ fn main() -> ! {
                 preset.name
             )
         );
+    }
+    // The board's demo scenes the standard scenes lack (`interlocked`: rows where spans meet,
+    // swept), drawn by the renderer the firmware draws them with. After the presets, so that
+    // the pairs before keep their numbers.
+    for name in DEMOS.iter().filter(|name| !NAMES.contains(name)) {
+        ok &= standard(&mut shelf, name, false);
     }
     // Last, so that the pairs before keep their numbers (the profiler's scripts count them).
     board_sink(false, &mut shelf);

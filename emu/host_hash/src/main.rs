@@ -18,7 +18,7 @@
 use std::process::ExitCode;
 use zrow::presets::{DepthStore, Preset, PRESETS};
 use zrow::{Renderer, Scanline, Q16_16};
-use zrow_scenes::{Format, FrameHash, FOLEY, LINES, NAMES, PRESET_SCENES};
+use zrow_scenes::{Format, FrameHash, DEMOS, FOLEY, LINES, NAMES, PRESET_SCENES};
 
 include!("../../src/methods.rs");
 include!("../../src/presets.rs");
@@ -133,6 +133,10 @@ fn all() -> bool {
         }
         // Formats the bench skips print nothing: the lines stay the bench's.
         with_preset_format!(preset, draw, ());
+    }
+    for name in DEMOS.iter().filter(|name| !NAMES.contains(name)) {
+        ok &= line::<Q16_16, Standard<Q16_16>>(name);
+        ok &= line::<f32, Standard<f32>>(name);
     }
     ok
 }
