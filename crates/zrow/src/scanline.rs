@@ -1637,12 +1637,6 @@ impl<
         let (mut front, mut at, mut front_xr, mut until) = (NONE, 0usize, 0i32, i32::MAX);
         loop {
             let (active, sorted, open) = (&mut self.active[..], &self.sorted[..], &mut self.open);
-            let planes = Planes {
-                vertices,
-                polygons: &self.polygons,
-                s,
-                y,
-            };
             // Spans opening at or before `cur` (left ends read from the keys).
             while let Some(&key) = sorted.get(k) {
                 if key_left(key) > cur {
@@ -1653,7 +1647,17 @@ impl<
                 if active[slot].xr() > cur {
                     // Cannot fail: `open` has the active list's capacity.
                     let _ = open.push(slot as u16);
-                    planes.ensure(&mut active[slot]);
+                    if !active[slot].planed() {
+                        // (Built here, not once a pass: the loop went through it ~2,800
+                        // times on the interlocked demo frame for ~200 planes.)
+                        let planes = Planes {
+                            vertices,
+                            polygons: &self.polygons,
+                            s,
+                            y,
+                        };
+                        planes.set(&mut active[slot]);
+                    }
                     if front != NONE {
                         match challenge(active, front, slot, cur, y) {
                             Some(u) => until = until.min(u),
@@ -2509,11 +2513,18 @@ impl<N: Scalar, S: Slot> Planes<'_, N, S> {
     /// Sets `a`'s depth plane (in the exact formats its depth at column 0 of the current row)
     /// if not yet set:
     /// the plane through its vertices in canonical order, the same bits whenever computed.
-    #[inline]
+    /// The test in line (where spans meet, most polygons are asked again and again), the
+    /// plane out of line.
+    #[inline(always)]
     fn ensure(&self, a: &mut Active<N>) {
-        if a.planed() {
-            return;
+        if !a.planed() {
+            self.set(a);
         }
+    }
+
+    /// [`Self::ensure`] of a polygon that has no plane yet.
+    #[inline(never)]
+    fn set(&self, a: &mut Active<N>) {
         let ring = Ring {
             vertices: self.vertices,
             polygon: &self.polygons[a.poly as usize],
