@@ -1635,6 +1635,10 @@ impl<
         // The front polygon: its slot, its index in `open`, where its span ends, and the first
         // column where another open polygon may overtake it.
         let (mut front, mut at, mut front_xr, mut until) = (NONE, 0usize, 0i32, i32::MAX);
+        // Whether a front's run may be painted in one piece past spans that open behind it:
+        // where a run's pixels do not depend on where it starts (flat colour, or a shade
+        // stepped exactly) and nothing else is written per run (depths, the affine cue).
+        let ahead = !self.row.more && (N::EXACT_STEPS || !G::KEEPS);
         loop {
             let (active, sorted, open) = (&mut self.active[..], &self.sorted[..], &mut self.open);
             // Spans opening at or before `cur` (left ends read from the keys).
@@ -1645,8 +1649,6 @@ impl<
                 k += 1;
                 let slot = key as u16 as usize;
                 if active[slot].xr() > cur {
-                    // Cannot fail: `open` has the active list's capacity.
-                    let _ = open.push(slot as u16);
                     if !active[slot].planed() {
                         // (Built here, not once a pass: the loop went through it ~2,800
                         // times on the interlocked demo frame for ~200 planes.)
@@ -1658,11 +1660,20 @@ impl<
                         };
                         planes.set(&mut active[slot]);
                     }
-                    if front != NONE {
-                        match challenge(active, front, slot, cur, y) {
-                            Some(u) => until = until.min(u),
-                            None => front = NONE, // the newcomer is in front
-                        }
+                    let behind = front != NONE
+                        && match challenge(active, front, slot, cur, y) {
+                            Some(u) => {
+                                until = until.min(u);
+                                hidden(active, front, slot, u)
+                            }
+                            None => {
+                                front = NONE; // the newcomer is in front
+                                false
+                            }
+                        };
+                    if !behind {
+                        // Cannot fail: `open` has the active list's capacity.
+                        let _ = open.push(slot as u16);
                     }
                 }
             }
@@ -1681,13 +1692,54 @@ impl<
                 front_xr = active[front].xr();
                 stats.front_changes += 1;
             }
-            let next = next_start.min(front_xr).min(until).min(w);
+            let mut next = front_xr.min(until).min(w);
+            // Where painting may go on past openings: each span opening behind the front
+            // before it ends or is overtaken, challenged at its own first column (as if the
+            // sweep had stopped there), up to the first that comes in front.
+            let mut overtaken = false;
+            while let (true, Some(&key)) = (ahead, sorted.get(k)) {
+                let c = key_left(key);
+                if c >= next {
+                    break;
+                }
+                k += 1;
+                let slot = key as u16 as usize;
+                if active[slot].xr() > c {
+                    if !active[slot].planed() {
+                        let planes = Planes {
+                            vertices,
+                            polygons: &self.polygons,
+                            s,
+                            y,
+                        };
+                        planes.set(&mut active[slot]);
+                    }
+                    match challenge(active, front, slot, c, y) {
+                        Some(u) => {
+                            (until, next) = (until.min(u), next.min(u));
+                            if !hidden(active, front, slot, u) {
+                                let _ = open.push(slot as u16);
+                            }
+                        }
+                        None => {
+                            let _ = open.push(slot as u16);
+                            (next, overtaken) = (c, true); // the newcomer is in front
+                            break;
+                        }
+                    }
+                }
+            }
+            if !ahead {
+                next = next.min(next_start);
+            }
             self.paint(vertices, cur, next, Some(front), want_depth);
             cur = next;
             if cur >= w {
                 return (cur, k);
             }
-            if front_xr <= cur {
+            if overtaken {
+                front = NONE;
+            } else if front_xr <= cur {
                 self.open.swap_remove(at); // closed
                 front = NONE;
             } else if until <= cur {
@@ -2699,6 +2751,17 @@ fn challenge<N: Scalar>(active: &[Active<N>], p: usize, q: usize, x: i32, y: i32
         }
     }
     Some(hi)
+}
+
+/// Whether the polygon in slot `q`, which front `p` holds off until column `until`
+/// ([`challenge`]), can be left out of the open spans: `p` is nearer across all of `q`'s span
+/// that is left (`until` is "never" and `q` closes no later than `p`), so `q` is never the
+/// visible one while `p` is open — the order at a column being total, any polygon `q` would
+/// beat there `p` beats too — and never the first to overtake a front either, `p` being
+/// open wherever `q` is.
+#[inline]
+fn hidden<N: Scalar>(active: &[Active<N>], p: usize, q: usize, until: i32) -> bool {
+    until == i32::MAX && active[q].xr() <= active[p].xr()
 }
 
 /// The polygon in front at column `x` of row `y` among the slots `open` (not empty): its
