@@ -1638,7 +1638,10 @@ impl<
         // Whether a front's run may be painted in one piece past spans that open behind it:
         // where a run's pixels do not depend on where it starts (flat colour, or a shade
         // stepped exactly) and nothing else is written per run (depths, the affine cue).
-        let ahead = !self.row.more && (N::EXACT_STEPS || !G::KEEPS);
+        // (A renderer with neither a depth row nor the affine cue's state writes nothing else:
+        // known when it is built.)
+        let more = (D::KEEPS || C::KEEPS) && self.row.more;
+        let ahead = !more && (N::EXACT_STEPS || !G::KEEPS);
         loop {
             let (active, sorted, open) = (&mut self.active[..], &self.sorted[..], &mut self.open);
             // Spans opening at or before `cur` (left ends read from the keys).
@@ -1660,7 +1663,10 @@ impl<
                         };
                         planes.set(&mut active[slot]);
                     }
-                    let behind = front != NONE
+                    // (Painting ahead, no front is left here: each run goes on until the
+                    // front ends, is overtaken or the row ends.)
+                    let behind = !ahead
+                        && front != NONE
                         && match challenge(active, front, slot, cur, y) {
                             Some(u) => {
                                 until = until.min(u);
@@ -2730,6 +2736,7 @@ fn beats<N: Scalar>(active: &[Active<N>], p: usize, q: usize, x: i32, y: i32) ->
 /// (`i32::MAX` if none). Depths are linear in x, so `p − q` changes sign at most once: check
 /// the stretch's far end, then bisect (in Q16.16 exactly: the steps are exact integer
 /// arithmetic).
+#[inline(always)]
 fn challenge<N: Scalar>(active: &[Active<N>], p: usize, q: usize, x: i32, y: i32) -> Option<i32> {
     let (a, b) = (&active[p], &active[q]);
     let (zp, zq) = (RowDepths::new(a, y), RowDepths::new(b, y));
