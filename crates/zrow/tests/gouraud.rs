@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{every_method, painters, Capture};
+use common::{every_method, painters, Capture, Colours};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use zrow::scanline::{ram_bytes_gouraud, ram_bytes_uncued};
 use zrow::shading::Shading;
@@ -210,6 +210,44 @@ const ONE: &[[f32; 3]] = &[[0.0; 3]];
 /// Three spheres overlapping on screen, at three depths: rows covered more than twice over,
 /// which the scan-line method resolves pixel by pixel.
 const PILE: &[[f32; 3]] = &[[-0.3, 0.0, 0.0], [0.0, 0.1, -1.0], [0.3, -0.1, 1.0]];
+
+/// Two spheres that meet on screen without piling up: rows where spans overlap are swept, not
+/// resolved pixel by pixel. Either in front: the right one's spans open inside the left one's
+/// and come in front, or open behind it.
+const PAIRS: [&[[f32; 3]]; 2] = [
+    &[[-0.45, 0.0, -1.0], [0.45, 0.1, 0.0]],
+    &[[-0.45, 0.0, 0.0], [0.45, 0.1, -1.0]],
+];
+
+/// The smooth scan-line frame into a sink that reads no depth equals its frame into one that
+/// does. Without depths to write, the sweep paints a front's run in one piece past the spans
+/// that open behind it; writing depths, it stops at each. In fixed point the shade, stepped
+/// exactly, does not depend on where a run starts; f32's does, so it stops there too.
+#[test]
+fn a_smooth_frame_is_the_same_painted_ahead() {
+    fn check<N: Scalar>() {
+        for (pair, dither) in PAIRS.into_iter().flat_map(|p| [(p, false), (p, true)]) {
+            let with_depth = smooth_frame_as::<N>((5, 10), pair, dither);
+            let shading = Shading::Gouraud { dither };
+            let (colours, stats) =
+                with_sphere::<N, _>((5, 10), pair, shading, true, |scene, cfg| {
+                    let mut colours = Colours(Vec::new());
+                    let mut r = Box::new(Smooth::<N>::new());
+                    let stats = r.as_mut().render(scene, cfg, &mut colours).unwrap();
+                    (colours, stats)
+                });
+            assert!(stats.front_changes > 20, "{}: rows are swept", N::NAME);
+            let s = S as usize;
+            let differ = (colours.0.iter().enumerate())
+                .filter(|&(k, &c)| c != with_depth.at(k % s, k / s))
+                .count();
+            assert_eq!(differ, 0, "{} (dither {dither}): pixels differ", N::NAME);
+        }
+    }
+    check::<Q16_16>();
+    check::<Q24_8>();
+    check::<f32>();
+}
 
 /// Every method draws the same smooth frame, bit for bit, dithered or not, in each fixed-point
 /// format (the painters, exact only without overlap, draw one sphere).
