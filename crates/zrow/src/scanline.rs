@@ -1652,17 +1652,7 @@ impl<
                 k += 1;
                 let slot = key as u16 as usize;
                 if active[slot].xr() > cur {
-                    if !active[slot].planed() {
-                        // (Built here, not once a pass: the loop went through it ~2,800
-                        // times on the interlocked demo frame for ~200 planes.)
-                        let planes = Planes {
-                            vertices,
-                            polygons: &self.polygons,
-                            s,
-                            y,
-                        };
-                        planes.set(&mut active[slot]);
-                    }
+                    ensure_plane(&mut active[slot], vertices, &self.polygons, s, y);
                     // (Painting ahead, no front is left here: each run goes on until the
                     // front ends, is overtaken or the row ends.)
                     let behind = !ahead
@@ -1711,15 +1701,7 @@ impl<
                 k += 1;
                 let slot = key as u16 as usize;
                 if active[slot].xr() > c {
-                    if !active[slot].planed() {
-                        let planes = Planes {
-                            vertices,
-                            polygons: &self.polygons,
-                            s,
-                            y,
-                        };
-                        planes.set(&mut active[slot]);
-                    }
+                    ensure_plane(&mut active[slot], vertices, &self.polygons, s, y);
                     match challenge(active, front, slot, c, y) {
                         Some(u) => {
                             (until, next) = (until.min(u), next.min(u));
@@ -2557,6 +2539,28 @@ fn fill_depth<N: Scalar>(depth: &mut [N], a: &Active<N>, y: i32, x0: i32) {
 /// is a library call dearer than converting an integer, so x is converted a pixel instead
 /// of counted in `f32` (the same bits either way).
 const FPU: bool = !cfg!(all(target_arch = "arm", not(target_abi = "eabihf")));
+
+/// [`Planes::ensure`] for the sweep, the view built only for a polygon without a plane (it
+/// asks for one at every span that opens: ~2,800 times on the interlocked demo frame, for ~200
+/// planes).
+#[inline(always)]
+fn ensure_plane<N: Scalar, S: Slot>(
+    a: &mut Active<N>,
+    vertices: &[RasterVertex<N>],
+    polygons: &[Polygon<S>],
+    s: u32,
+    y: i32,
+) {
+    if !a.planed() {
+        Planes {
+            vertices,
+            polygons,
+            s,
+            y,
+        }
+        .set(a);
+    }
+}
 
 /// What computing a depth plane on demand needs: the vertex buffer, the polygon table, the
 /// sub-pixel bits, the current row.
