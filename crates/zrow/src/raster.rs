@@ -361,6 +361,16 @@ impl Dda {
     /// sample row `row`: [`Edge::dda_at`] without building the edge.
     #[inline]
     pub fn between(x0: i32, y0: i32, x1: i32, y1: i32, row: i32, s: u32) -> Dda {
+        let mut d = Dda::ZERO;
+        d.set_between(x0, y0, x1, y1, row, s);
+        d
+    }
+
+    /// Sets this walk to [`Dda::between`]'s, written where it is kept (returned, it was
+    /// written to the stack and copied: on an x86-64 host the copy's wide load waits for the
+    /// narrow stores before it to retire).
+    #[inline]
+    pub fn set_between(&mut self, x0: i32, y0: i32, x1: i32, y1: i32, row: i32, s: u32) {
         // The fast path of `Edge::dda_at`, its conditions folded into unsigned comparisons.
         let (h, mask) = (1i32 << s >> 1, (1i32 << s) - 1);
         let (dx, dy) = (x1.wrapping_sub(x0), y1.wrapping_sub(y0));
@@ -373,9 +383,10 @@ impl Dda {
             let x0h = x0 - h;
             let num = (x0h & mask) * dy + t * dx;
             let q = div_ceil_positive(num, den);
-            return Dda::new((x0h >> s) + q, q * den - num, qs, rs, den);
+            *self = Dda::new((x0h >> s) + q, q * den - num, qs, rs, den);
+            return;
         }
-        Edge {
+        *self = Edge {
             first_row: 0,
             last_row: 0,
             x0,
@@ -385,7 +396,7 @@ impl Dda {
             poly: 0,
             side: Side::Left,
         }
-        .dda_at_wide(row, s)
+        .dda_at_wide(row, s);
     }
 
     /// Moves to the next row.

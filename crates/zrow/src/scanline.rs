@@ -2162,11 +2162,15 @@ fn triangle_sides<N: Scalar, S: Slot>(
         true => (backward, forward),
         false => (forward, backward),
     };
-    let dda = |(p, q, _): (usize, usize, i32)| Dda::between(v[p].x, v[p].y, v[q].x, v[q].y, y, s);
+    let dda = |d: &mut Dda, (p, q, _): (usize, usize, i32)| {
+        d.set_between(v[p].x, v[p].y, v[q].x, v[q].y, y, s)
+    };
     let end = |(_, q, last): (usize, usize, i32)| end_bits(last, q);
     // Its first two edges: one of them ends at its lowest corner, its last row.
     let lowest = left.2.max(right.2);
-    a.dda = [dda(left), dda(right)];
+    let [l, r] = &mut a.dda;
+    dda(l, left);
+    dda(r, right);
     a.end = [end(left) | flag(left.2 == lowest, LAST_EDGE), end(right)];
     true
 }
@@ -2196,16 +2200,30 @@ fn next_edge<N: Scalar, S: Slot>(
     // Clockwise on the display: forward from the top runs down the right side.
     let forward = (side == RIGHT) == p.clockwise();
     let triangle = ring.len() == 3;
-    let next = if triangle {
+    if triangle {
         // A triangle's side has two edges (from its top, recorded first): the second runs
         // from the end of the first to the third corner, forward or backward round the
         // ring, its lowest. (Beyond it the side turns up: nothing more, as `walk_from` would
-        // find.)
+        // find.) `edge_walk`'s, written in place.
         let at = at as usize;
         let to = if forward { (at + 1) % 3 } else { (at + 2) % 3 };
-        edge_walk(ring.get(at), ring.get(to), to, y, cfg)
-    } else {
-        walk_from(ring, at, forward, y, cfg)
+        let (p, q) = (ring.get(at), ring.get(to));
+        let (s, h, height) = (cfg.subpixel_bits as u32, cfg.half(), cfg.height as i32);
+        let last = row_at_or_below(q.y, s, h).min(height) - 1;
+        if q.y > p.y && last >= y {
+            a.dda[side].set_between(p.x, p.y, q.x, q.y, y, s);
+            // The second edge of a side is its last: on the left, the polygon's.
+            let keep = match side {
+                RIGHT => a.end[RIGHT] & PLANED,
+                _ => LAST_EDGE,
+            };
+            a.end[side] = end_bits(last, to) | keep;
+            return true;
+        }
+    }
+    let next = match triangle {
+        true => None,
+        false => walk_from(ring, at, forward, y, cfg),
     };
     match (next, side) {
         (Some(next), RIGHT) => a.set_right(next),
