@@ -1373,6 +1373,7 @@ impl Scalar for f32 {
             }
         })
     }
+    #[inline]
     fn face_normal(a: [Self; 3], b: [Self; 3], c: [Self; 3]) -> Option<[Self; 3]> {
         let n = cross3(sub3(b, a), sub3(c, a));
         // `f32::max`'s result (a NaN passed over) by comparisons: on a Cortex-M4F it is a
