@@ -2084,14 +2084,20 @@ fn edge_walk<N>(
     y: i32,
     cfg: &Config,
 ) -> Option<Walk> {
-    let (s, h, height) = (cfg.subpixel_bits as u32, cfg.half(), cfg.height as i32);
-    // The edge's last sample row.
-    let last = row_at_or_below(q.y, s, h).min(height) - 1;
-    (q.y > p.y && last >= y).then(|| Walk {
-        dda: Dda::between(p.x, p.y, q.x, q.y, y, s),
+    edge_last(p, q, y, cfg).map(|last| Walk {
+        dda: Dda::between(p.x, p.y, q.x, q.y, y, cfg.subpixel_bits as u32),
         last: last as i16,
         at: at as u8,
     })
+}
+
+/// The last sample row of the edge from `p` down to `q`, if the edge goes down and covers
+/// row `y` (what [`edge_walk`] walks, and [`next_edge`] writes in place).
+#[inline(always)]
+fn edge_last<N>(p: &RasterVertex<N>, q: &RasterVertex<N>, y: i32, cfg: &Config) -> Option<i32> {
+    let (s, h, height) = (cfg.subpixel_bits as u32, cfg.half(), cfg.height as i32);
+    let last = row_at_or_below(q.y, s, h).min(height) - 1;
+    (q.y > p.y && last >= y).then_some(last)
 }
 
 /// The edge of one side of a polygon that crosses row `y`, walking its vertex ring from
@@ -2208,9 +2214,8 @@ fn next_edge<N: Scalar, S: Slot>(
         let at = at as usize;
         let to = if forward { (at + 1) % 3 } else { (at + 2) % 3 };
         let (p, q) = (ring.get(at), ring.get(to));
-        let (s, h, height) = (cfg.subpixel_bits as u32, cfg.half(), cfg.height as i32);
-        let last = row_at_or_below(q.y, s, h).min(height) - 1;
-        if q.y > p.y && last >= y {
+        if let Some(last) = edge_last(p, q, y, cfg) {
+            let s = cfg.subpixel_bits as u32;
             a.dda[side].set_between(p.x, p.y, q.x, q.y, y, s);
             // The second edge of a side is its last: on the left, the polygon's.
             let keep = match side {
@@ -2560,7 +2565,8 @@ const FPU: bool = !cfg!(all(target_arch = "arm", not(target_abi = "eabihf")));
 
 /// [`Planes::ensure`] for the sweep, the view built only for a polygon without a plane (it
 /// asks for one at every span that opens: ~2,800 times on the interlocked demo frame, for ~200
-/// planes).
+/// planes). Built in `ensure`'s call instead, the view was put on the stack at every ask (the
+/// interlocked frame +49 k: tried).
 #[inline(always)]
 fn ensure_plane<N: Scalar, S: Slot>(
     a: &mut Active<N>,
