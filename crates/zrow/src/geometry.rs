@@ -574,6 +574,26 @@ fn dropped(area: i64, cfg: &Config) -> bool {
     area == 0 || (cfg.cull == Cull::Back && area > 0)
 }
 
+/// Every vertex of `vertices` transformed by `mv` into its slot: inside the view volume and
+/// the guard band, projected and snapped; else marked unprojected. Out of line: the loop keeps
+/// its registers for itself.
+#[inline(never)]
+fn project_all<N: Scalar>(
+    slots: &mut [RasterVertex<N>],
+    vertices: Vectors<'_, N>,
+    mv: &Prepared<'_, N>,
+    proj: &Projector<N>,
+    cfg: &Config,
+) {
+    for (slot, v) in slots.iter_mut().zip(vertices.iter()) {
+        let c = mv.apply_checked_with(cfg.math, v).map(|v| proj.clip(v));
+        *slot = c
+            .filter(|c| proj.inside(c))
+            .and_then(|c| proj.screen(&c))
+            .unwrap_or_else(unprojected);
+    }
+}
+
 fn num<N: Scalar>(v: i32) -> N {
     // Viewport sizes and guard band are far inside every format's range.
     N::from_f32(v as f32).unwrap_or(N::ZERO)
@@ -1237,15 +1257,7 @@ impl<N: Scalar, I: MeshIndex> Scene<N> for ModelScene<'_, N, I> {
             let base = buf.claim(mesh.vertices.len());
             let prepared = mv.prepare();
             if let Some(b) = base {
-                for (slot, v) in buf.slots_from(b).iter_mut().zip(mesh.vertices.iter()) {
-                    let c = prepared
-                        .apply_checked_with(cfg.math, v)
-                        .map(|v| proj.clip(v));
-                    *slot = c
-                        .filter(|c| proj.inside(c))
-                        .and_then(|c| proj.screen(&c))
-                        .unwrap_or_else(unprojected);
-                }
+                project_all(buf.slots_from(b), mesh.vertices, &prepared, &proj, cfg);
             }
             let normal = |k: usize, face: &Face<'_, I>| -> Option<[N; 3]> {
                 if let Some(n) = mesh.normals.get(k) {
