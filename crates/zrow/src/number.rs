@@ -946,8 +946,17 @@ macro_rules! impl_fixed {
                     true => div::div_round_small_divisor(n, d as u32),
                     false => i32::try_from(div::div_round(n, d as i64)).ok(),
                 };
-                let x = q(self.to_bits() as i64 * kx as i64)?;
-                let y = q(y.to_bits() as i64 * ky as i64)?;
+                let (nx, ny) = (
+                    self.to_bits() as i64 * kx as i64,
+                    y.to_bits() as i64 * ky as i64,
+                );
+                // Both numerators below 2^32 and both quotients below 2^31 (a vertex in the
+                // guard band): one hardware division each and one test for both, the same
+                // quotients; else each the way above.
+                let (x, y) = match div::div_round_pair(nx, ny, d as u32) {
+                    Some(xy) => xy,
+                    None => (q(nx)?, q(ny)?),
+                };
                 let z = match k {
                     // (Below 2^24, the same quotient without 64-bit shifts: the numerator's
                     // low bits are zeros.)

@@ -184,6 +184,35 @@ pub(crate) fn div_round_small_divisor(n: i64, d: u32) -> Option<i32> {
     rounded(q, r, d, n < 0)
 }
 
+/// [`div_round`] of two numerators by one divisor `d > 0`, where both fit 32 bits and both
+/// quotients' magnitudes stay below 2^31: one hardware division each and a single test for
+/// both (`q + 1` cannot wrap: a quotient of 2^32 − 1 means `d = 1` and no remainder). `None`
+/// otherwise, for the caller to take each the general way (which also decides a quotient of
+/// exactly −2^31).
+#[inline(always)]
+pub(crate) fn div_round_pair(a: i64, b: i64, d: u32) -> Option<(i32, i32)> {
+    let (ua, ub) = (a.unsigned_abs(), b.unsigned_abs());
+    if (ua | ub) >> 32 != 0 || d == 0 {
+        return None;
+    }
+    let round = |n: u32| {
+        let (q, r) = (n / d, n % d);
+        q + (r >= d - r) as u32
+    };
+    let (qa, qb) = (round(ua as u32), round(ub as u32));
+    if (qa | qb) >> 31 != 0 {
+        return None;
+    }
+    let signed = |q: u32, neg: bool| {
+        if neg {
+            (q as i32).wrapping_neg()
+        } else {
+            q as i32
+        }
+    };
+    Some((signed(qa, a < 0), signed(qb, b < 0)))
+}
+
 /// `n · 2^shift / d` rounded to nearest, ties away from zero: [`div_round_small_divisor`] of
 /// that numerator, for `shift` a multiple of 8 (a fixed-point format's fractional bits), its
 /// digits taken from `n` and then zeros with no 64-bit shift: one hardware division for `n`
@@ -368,6 +397,50 @@ mod tests {
             };
             assert_eq!(div_round(n, d), exact(n, d), "{n} / {d}");
         }
+    }
+
+    #[test]
+    fn pair_path_equals_div_round() {
+        // Numerators around 2^32 and quotients around 2^31 (both sides), divisors from 1 to
+        // 2^31 − 1: where the pair answers, each is `div_round`'s, and it answers whenever
+        // both numerators fit 32 bits and both quotients stay below 2^31.
+        let mut seed = 0x51_7cc1_b727_220au64;
+        let mut answered = 0;
+        for i in 0..300_000u32 {
+            let mut r = || xorshift64(&mut seed);
+            let d = match i % 3 {
+                0 => 1 + r() % 5,
+                1 => (r() as u32 >> (r() % 31)).max(1) as u64,
+                _ => (1u64 << 31) - 1 - r() % 3,
+            } as i64;
+            let mut n = || -> i64 {
+                let v = match r() % 4 {
+                    0 => (1i64 << 32) - 1 - (r() % 3) as i64,
+                    1 => (d << 31) - d / 2 - 1 + (r() % 3) as i64,
+                    _ => (r() >> (r() % 64)) as i64 >> 1,
+                };
+                if r() % 2 == 0 {
+                    v
+                } else {
+                    -v
+                }
+            };
+            let (a, b) = (n(), n());
+            let fits =
+                |v: i64| v.unsigned_abs() < 1 << 32 && div_round(v, d).unsigned_abs() < 1 << 31;
+            match div_round_pair(a, b, d as u32) {
+                Some((qa, qb)) => {
+                    answered += 1;
+                    assert_eq!(
+                        (qa as i64, qb as i64),
+                        (div_round(a, d), div_round(b, d)),
+                        "{a}, {b} / {d}"
+                    );
+                }
+                None => assert!(!(fits(a) && fits(b)), "{a}, {b} / {d}: not answered"),
+            }
+        }
+        assert!(answered > 50_000, "{answered}");
     }
 
     #[test]
