@@ -203,13 +203,6 @@ pub(crate) fn div_round_pair(a: i64, b: i64, d: u32) -> Option<(i32, i32)> {
     if (qa | qb) >> 31 != 0 {
         return None;
     }
-    let signed = |q: u32, neg: bool| {
-        if neg {
-            (q as i32).wrapping_neg()
-        } else {
-            q as i32
-        }
-    };
     Some((signed(qa, a < 0), signed(qb, b < 0)))
 }
 
@@ -292,10 +285,16 @@ fn rounded(q: u32, r: u32, d: u32, negative: bool) -> Option<i32> {
     let q = q.checked_add((r >= d - r) as u32)?;
     // Up to 2^31 − 1, or 2^31 for a negative quotient.
     let most = (1u32 << 31) - !negative as u32;
-    (q <= most).then(|| match negative {
+    (q <= most).then(|| signed(q, negative))
+}
+
+/// A magnitude of at most 2^31 (2^31 only if `negative`) with its sign.
+#[inline(always)]
+fn signed(q: u32, negative: bool) -> i32 {
+    match negative {
         true => (q as i32).wrapping_neg(),
         false => q as i32,
-    })
+    }
 }
 
 #[cfg(test)]
